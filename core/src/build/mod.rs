@@ -1,0 +1,13 @@
+//! Building hierarchies.
+//!
+//! Lecture: *building strategies*. The top-down family ([`TopDown`]) splits the
+//! input recursively; every choice the lectures list is a named value:
+//! [`Partition`] (the criterion a split minimises), [`AxisChoice`],
+//! [`SplitPoint`], [`Stop`], and [`OnFailure`] for splits that do not separate
+//! anything. Bottom-up and insertion builders come with their own modules.
+
+mod strategy;
+mod top_down;
+
+pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
+pub use top_down::TopDown;

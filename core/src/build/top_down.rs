@@ -1,0 +1,994 @@
+//! The top-down builder: one shared skeleton, pluggable split evaluation.
+//!
+//! Skeleton (Ericson 6.2.1), written with an explicit stack so it is safe on a
+//! small thread or interrupt stack:
+//!
+//! 1. bound the node's primitives;
+//! 2. stop if a [`Stop`] criterion holds;
+//! 3. otherwise evaluate candidate splits (axis x split point, scored by the
+//!    [`Partition`] criterion), partition the index range in place, and
+//!    continue with both halves.
+//!
+//! The larger half is processed next and the smaller one pushed, so the stack
+//! never holds more than `log2(n) + 1` entries. The default configuration
+//! (binned SAH over x, y and z) has a dedicated single-pass binning loop; every
+//! other combination goes through the general evaluator.
+
+use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::{validate, Primitive};
+use crate::tree::{max_nodes, Bvh, IndexedBoxes, Node, MAX_DEPTH};
+use crate::Error;
+use glam::{DMat3, DVec3, Vec3};
+
+/// A top-down builder: a plain configuration value; [`build`](Self::build) does the work.
+///
+/// ```
+/// use bvhkit::{Aabb, Node, TopDown, Triangle, Partition, SplitPoint, AxisChoice};
+/// use glam::Vec3;
+/// let tris: Vec<Triangle> = (0..100)
+///     .map(|i| Triangle::new(Vec3::new(i as f32, 0.0, 0.0), Vec3::new(i as f32, 1.0, 0.0), Vec3::new(i as f32, 0.0, 1.0)))
+///     .collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+/// let mut indices = vec![0u32; tris.len()];
+/// // Median cut along the axis of greatest variance, two primitives per leaf.
+/// let builder = TopDown {
+///     partition: Partition::Balance,
+///     axis: AxisChoice::Variance,
+///     split: SplitPoint::ObjectMedian,
+///     ..TopDown::default()
+/// }
+/// .with_max_leaf_size(2);
+/// let bvh = builder.build(&tris, &mut nodes, &mut indices)?;
+/// assert_eq!(bvh.depth(), 6); // 100 -> 50 -> 25 -> 13 -> 7 -> 4 -> 2
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TopDown {
+    /// What a split minimises.
+    pub partition: Partition,
+    /// Which axes splits are tried along.
+    pub axis: AxisChoice,
+    /// Where candidate planes are placed.
+    pub split: SplitPoint,
+    /// When to make a leaf.
+    pub stop: Stop,
+    /// What to do when no criterion separates a node.
+    pub on_failure: OnFailure,
+}
+
+impl Default for TopDown {
+    /// Binned SAH ([`TopDown::sah`]).
+    fn default() -> Self {
+        TopDown::sah()
+    }
+}
+
+/// One node waiting to be processed: its index range and known bounds.
+#[derive(Clone, Copy, Debug)]
+struct Task {
+    node: u32,
+    start: u32,
+    end: u32,
+    depth: u32,
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+/// Result of partitioning a range: the split position and both halves' bounds.
+#[derive(Clone, Copy, Debug)]
+struct Halves {
+    mid: usize,
+    bounds: [Aabb; 2],
+    centroids: [Aabb; 2],
+}
+
+/// How primitives are assigned to bins along one direction.
+#[derive(Clone, Copy, Debug)]
+enum Binning {
+    /// `k` equal bins over `[lo, lo + k / scale]`.
+    Even { lo: f32, scale: f32, k: usize },
+    /// Bin `i` holds `planes[i-1] <= t < planes[i]`; `m` planes, `m + 1` bins.
+    Planes { planes: [f32; MAX_BINS], m: usize },
+}
+
+impl Binning {
+    #[inline]
+    fn bins(&self) -> usize {
+        match *self {
+            Binning::Even { k, .. } => k,
+            Binning::Planes { m, .. } => m + 1,
+        }
+    }
+    #[inline]
+    fn bin(&self, t: f32) -> usize {
+        match *self {
+            Binning::Even { lo, scale, k } => even_bin(t, lo, scale, k),
+            Binning::Planes { ref planes, m } => planes[..m].partition_point(|&p| p <= t),
+        }
+    }
+}
+
+#[inline(always)]
+fn even_bin(t: f32, lo: f32, scale: f32, k: usize) -> usize {
+    // `as usize` saturates negative values to 0; the min clamps t == hi.
+    (((t - lo) * scale) as usize).min(k - 1)
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Bin {
+    bounds: Aabb,
+    count: u32,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    bounds: Aabb::EMPTY,
+    count: 0,
+};
+
+/// A chosen split, before the range is partitioned.
+#[derive(Clone, Copy, Debug)]
+enum Plan {
+    /// Left iff `binning.bin(dir . c) < boundary`.
+    Plane {
+        dir: Vec3,
+        binning: Binning,
+        boundary: usize,
+    },
+    /// Left iff `bin(c[axis]) < boundary` with even bins (the fast path).
+    Axis {
+        axis: usize,
+        lo: f32,
+        scale: f32,
+        k: usize,
+        boundary: usize,
+    },
+    /// The `mid` primitives with the smallest `dir . c` go left.
+    Order { dir: Vec3, mid: usize },
+}
+
+impl TopDown {
+    /// Binned SAH over x, y and z with 16 bins: the fast, high-quality default.
+    pub const fn sah() -> Self {
+        TopDown {
+            partition: Partition::SurfaceArea,
+            axis: AxisChoice::BestOfXyz,
+            split: SplitPoint::Bins(16),
+            stop: Stop {
+                max_leaf_size: 4,
+                min_volume: 0.0,
+                max_depth: MAX_DEPTH as u32,
+            },
+            on_failure: OnFailure::ForceSplit,
+        }
+    }
+
+    /// SAH evaluated at every centroid (the exact sweep): the best SAH trees
+    /// this builder makes, `O(n log^2 n)`.
+    pub const fn sah_sweep() -> Self {
+        TopDown {
+            split: SplitPoint::Sweep,
+            ..TopDown::sah()
+        }
+    }
+
+    /// The classic median cut: equal halves along the longest axis.
+    pub const fn median() -> Self {
+        TopDown {
+            partition: Partition::Balance,
+            axis: AxisChoice::Longest,
+            split: SplitPoint::ObjectMedian,
+            ..TopDown::sah()
+        }
+    }
+
+    /// The same configuration with another leaf size.
+    pub const fn with_max_leaf_size(mut self, k: u32) -> Self {
+        self.stop.max_leaf_size = k;
+        self
+    }
+
+    /// Index-buffer entries a build over `n` primitives needs: `n`, or `2n` for
+    /// [`SplitPoint::Sweep`], which keeps per-node scratch in the second half.
+    pub const fn index_capacity(&self, n: usize) -> usize {
+        match self.split {
+            SplitPoint::Sweep => 2 * n,
+            _ => n,
+        }
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        if self.stop.max_leaf_size == 0 {
+            return Err(Error::InvalidConfig("max_leaf_size must be at least 1"));
+        }
+        if self.stop.max_depth as usize > MAX_DEPTH {
+            return Err(Error::InvalidConfig("max_depth must be at most MAX_DEPTH (64)"));
+        }
+        if !(self.stop.min_volume >= 0.0) {
+            return Err(Error::InvalidConfig("min_volume must be a non-negative number"));
+        }
+        match self.split {
+            SplitPoint::Bins(k) if !(2..=MAX_BINS as u8).contains(&k) => {
+                return Err(Error::InvalidConfig("bin count must be in 2..=MAX_BINS"))
+            }
+            SplitPoint::RandomCentroids { count, .. } if !(1..MAX_BINS as u8).contains(&count) => {
+                return Err(Error::InvalidConfig("random candidate count must be in 1..MAX_BINS"))
+            }
+            SplitPoint::Sweep if self.partition != Partition::SurfaceArea => {
+                return Err(Error::InvalidConfig(
+                    "the sweep split point evaluates the SurfaceArea criterion only",
+                ))
+            }
+            _ => {}
+        }
+        if let Partition::Weighted {
+            surface_area,
+            volume,
+            overlap,
+            balance,
+        } = self.partition
+        {
+            if ![surface_area, volume, overlap, balance]
+                .iter()
+                .all(|w| w.is_finite() && *w >= 0.0)
+            {
+                return Err(Error::InvalidConfig("weights must be finite and non-negative"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds a tree over `prims` into the caller's storage.
+    ///
+    /// `nodes` needs up to [`max_nodes`]`(n)` entries (fewer with larger leaves;
+    /// running out is an [`Error::NodeCapacity`]); `indices` needs
+    /// [`index_capacity`](Self::index_capacity)`(n)` entries. No allocation.
+    pub fn build<'a, P: Primitive, B: BoundingVolume>(
+        &self,
+        prims: &[P],
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+    ) -> Result<Bvh<'a, B>, Error> {
+        self.check()?;
+        validate(prims)?;
+        let n = prims.len();
+        let needed = self.index_capacity(n);
+        if indices.len() < needed {
+            return Err(Error::IndexCapacity {
+                needed,
+                available: indices.len(),
+            });
+        }
+        if nodes.is_empty() {
+            return Err(Error::NodeCapacity {
+                needed: max_nodes(n),
+                available: 0,
+            });
+        }
+        let (idx, scratch) = indices.split_at_mut(n);
+        for (i, slot) in idx.iter_mut().enumerate() {
+            *slot = i as u32;
+        }
+        let (bounds, centroids) = bounds_of(prims, idx);
+        let (used, depth) = self.run(prims, nodes, idx, scratch, bounds, centroids)?;
+        refit_to_contain_children(&mut nodes[..used]);
+        let nodes: &'a [Node<B>] = nodes;
+        let idx: &'a [u32] = idx;
+        Ok(Bvh::from_built(&nodes[..used], idx, depth))
+    }
+
+    /// The skeleton: returns (nodes used, depth).
+    fn run<P: Primitive, B: BoundingVolume>(
+        &self,
+        prims: &[P],
+        nodes: &mut [Node<B>],
+        idx: &mut [u32],
+        scratch: &mut [u32],
+        bounds: Aabb,
+        centroids: Aabb,
+    ) -> Result<(usize, u32), Error> {
+        const STACK: usize = 40; // >= log2(MAX_PRIMITIVES) + 2
+        let mut stack = [Task {
+            node: 0,
+            start: 0,
+            end: 0,
+            depth: 0,
+            bounds: Aabb::EMPTY,
+            centroids: Aabb::EMPTY,
+        }; STACK];
+        let mut top = 0;
+        let mut used = 1usize;
+        let mut max_depth = 0u32;
+        let mut task = Task {
+            node: 0,
+            start: 0,
+            end: idx.len() as u32,
+            depth: 0,
+            bounds,
+            centroids,
+        };
+        loop {
+            let (s, e) = (task.start as usize, task.end as usize);
+            let range = &mut idx[s..e];
+            let bv = B::fit_boxes(
+                &IndexedBoxes {
+                    prims,
+                    indices: range,
+                },
+                &task.bounds,
+            );
+            let count = (e - s) as u32;
+            let stop = count <= self.stop.max_leaf_size
+                || task.depth >= self.stop.max_depth
+                || (self.stop.min_volume > 0.0 && bv.volume() < self.stop.min_volume);
+            let halves = if stop {
+                None
+            } else {
+                let m = range.len().min(scratch.len());
+                self.split(prims, range, &mut scratch[..m], &task, &bv)
+            };
+            match halves {
+                None => {
+                    nodes[task.node as usize] = Node {
+                        bv,
+                        first: task.start,
+                        count,
+                    };
+                    max_depth = max_depth.max(task.depth);
+                    if top == 0 {
+                        break;
+                    }
+                    top -= 1;
+                    task = stack[top];
+                }
+                Some(h) => {
+                    if used + 2 > nodes.len() {
+                        return Err(Error::NodeCapacity {
+                            needed: max_nodes(idx.len()),
+                            available: nodes.len(),
+                        });
+                    }
+                    let left = used as u32;
+                    used += 2;
+                    nodes[task.node as usize] = Node {
+                        bv,
+                        first: left,
+                        count: 0,
+                    };
+                    let mid = (s + h.mid) as u32;
+                    let child = |i: usize, start: u32, end: u32| Task {
+                        node: left + i as u32,
+                        start,
+                        end,
+                        depth: task.depth + 1,
+                        bounds: h.bounds[i],
+                        centroids: h.centroids[i],
+                    };
+                    let l = child(0, task.start, mid);
+                    let r = child(1, mid, task.end);
+                    // Continue with the larger half; the pushed one is at most half.
+                    let (next, later) = if l.end - l.start >= r.end - r.start {
+                        (l, r)
+                    } else {
+                        (r, l)
+                    };
+                    if top == STACK {
+                        return Err(Error::StackOverflow {
+                            depth: top,
+                            capacity: STACK,
+                        });
+                    }
+                    stack[top] = later;
+                    top += 1;
+                    task = next;
+                }
+            }
+        }
+        Ok((used, max_depth))
+    }
+
+    /// Tries the configured strategy, then the fallbacks of the lectures.
+    fn split<P: Primitive, B: BoundingVolume>(
+        &self,
+        prims: &[P],
+        range: &mut [u32],
+        scratch: &mut [u32],
+        task: &Task,
+        bv: &B,
+    ) -> Option<Halves> {
+        let norm = Norm::new(&task.bounds);
+        let mut attempt = |axis: AxisChoice, split: SplitPoint, partition: Partition| {
+            let plan = plan(prims, range, scratch, task, bv, axis, split, partition, &norm)?;
+            let h = apply(prims, range, plan);
+            (h.mid > 0 && h.mid < range.len()).then_some(h)
+        };
+        let acceptable = |h: &Halves| {
+            !(norm.nearly_as_large(&h.bounds[0], &task.bounds)
+                && norm.nearly_as_large(&h.bounds[1], &task.bounds))
+        };
+        if let Some(h) = attempt(self.axis, self.split, self.partition) {
+            if acceptable(&h) {
+                return Some(h);
+            }
+        }
+        if self.axis != AxisChoice::BestOfXyz {
+            if let Some(h) = attempt(AxisChoice::BestOfXyz, self.split, self.partition) {
+                if acceptable(&h) {
+                    return Some(h);
+                }
+            }
+        }
+        // The object median always separates by count, even identical centroids.
+        let dir = directions(prims, range, task, bv, AxisChoice::Longest).axes[0];
+        let forced = apply(
+            prims,
+            range,
+            Plan::Order {
+                dir,
+                mid: range.len() / 2,
+            },
+        );
+        match self.on_failure {
+            OnFailure::ForceSplit => Some(forced),
+            OnFailure::Leaf => acceptable(&forced).then_some(forced),
+        }
+    }
+}
+
+/// Node bounds and centroid bounds over an index range.
+fn bounds_of<P: Primitive>(prims: &[P], idx: &[u32]) -> (Aabb, Aabb) {
+    let mut b = Aabb::EMPTY;
+    let mut c = Aabb::EMPTY;
+    for &i in idx {
+        let p = &prims[i as usize];
+        b = b.union(&p.bounds());
+        c.grow(p.centroid());
+    }
+    (b, c)
+}
+
+/// Parent-relative coordinates: every cost is computed on boxes scaled into the
+/// unit cube of the parent, so areas and volumes never overflow at 1e30.
+#[derive(Clone, Copy, Debug)]
+struct Norm {
+    origin: Vec3,
+    inv: f32,
+}
+
+impl Norm {
+    fn new(parent: &Aabb) -> Self {
+        let ext = parent.extent().max_element();
+        Norm {
+            origin: parent.min,
+            inv: if ext > 0.0 { 1.0 / ext } else { 1.0 },
+        }
+    }
+    #[inline]
+    fn apply(&self, b: &Aabb) -> Aabb {
+        Aabb::new((b.min - self.origin) * self.inv, (b.max - self.origin) * self.inv)
+    }
+    #[inline]
+    fn half_area(&self, b: &Aabb) -> f32 {
+        let e = (b.extent() * self.inv).max(Vec3::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
+    /// Both the area and the longest side are within 1% of the parent's.
+    fn nearly_as_large(&self, child: &Aabb, parent: &Aabb) -> bool {
+        self.half_area(child) >= 0.99 * self.half_area(parent)
+            && child.extent().max_element() >= 0.99 * parent.extent().max_element()
+    }
+}
+
+/// Cost of a candidate split under a criterion (lower is better).
+#[allow(clippy::too_many_arguments)]
+fn cost<B: BoundingVolume>(
+    partition: Partition,
+    norm: &Norm,
+    parent: &Aabb,
+    l: &Aabb,
+    nl: u32,
+    r: &Aabb,
+    nr: u32,
+) -> f32 {
+    let vol = |b: &Aabb| B::from_aabb(&norm.apply(b)).volume();
+    let sah = || {
+        (norm.half_area(l) * nl as f32 + norm.half_area(r) * nr as f32)
+            / (norm.half_area(parent).max(f32::MIN_POSITIVE) * (nl + nr) as f32)
+    };
+    let overlap = || match l.intersection(r) {
+        Some(i) => vol(&i) + norm.half_area(&i) * 1e-3,
+        None => 0.0,
+    };
+    let balance = || (nl as f32 - nr as f32).abs() / (nl + nr) as f32;
+    match partition {
+        Partition::Balance => balance(),
+        Partition::SurfaceArea => sah(),
+        Partition::Volume => vol(l) + vol(r),
+        Partition::LargerChild => vol(l).max(vol(r)),
+        Partition::Overlap => overlap(),
+        Partition::Separation => {
+            let (a, b) = (norm.apply(l), norm.apply(r));
+            let gap = (a.min - b.max).max(b.min - a.max).max_element();
+            -gap
+        }
+        Partition::Weighted {
+            surface_area,
+            volume,
+            overlap: w_overlap,
+            balance: w_balance,
+        } => {
+            let mut c = 0.0;
+            if surface_area > 0.0 {
+                c += surface_area * sah();
+            }
+            if volume > 0.0 {
+                c += volume * (vol(l) + vol(r));
+            }
+            if w_overlap > 0.0 {
+                c += w_overlap * overlap();
+            }
+            if w_balance > 0.0 {
+                c += w_balance * balance();
+            }
+            c
+        }
+    }
+}
+
+/// Candidate directions for an axis choice (at most 13).
+fn directions<P: Primitive, B: BoundingVolume>(
+    prims: &[P],
+    range: &[u32],
+    task: &Task,
+    bv: &B,
+    axis: AxisChoice,
+) -> crate::bv::Axes {
+    use crate::bv::Axes;
+    let one = |d: Vec3| {
+        let mut a = Axes::XYZ;
+        a.axes[0] = d;
+        a.len = 1;
+        a
+    };
+    match axis {
+        AxisChoice::X => one(Vec3::X),
+        AxisChoice::Y => one(Vec3::Y),
+        AxisChoice::Z => one(Vec3::Z),
+        AxisChoice::BestOfXyz => Axes::XYZ,
+        AxisChoice::Longest => {
+            let c = if task.centroids.extent().max_element() > 0.0 {
+                task.centroids
+            } else {
+                task.bounds
+            };
+            one(Axes::XYZ.axes[c.longest_axis()])
+        }
+        AxisChoice::Variance => one(principal_direction(prims, range)),
+        AxisChoice::DistantPoints => one(distant_direction(prims, range)),
+        AxisChoice::ParentVolume => bv.axes(),
+    }
+}
+
+/// Principal component of the centroids (normalised covariance, f64 Jacobi).
+fn principal_direction<P: Primitive>(prims: &[P], range: &[u32]) -> Vec3 {
+    let n = range.len() as f64;
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    let mut mean = DVec3::ZERO;
+    for &i in range {
+        let c = prims[i as usize].centroid().as_dvec3();
+        mean += c;
+        lo = lo.min(c);
+        hi = hi.max(c);
+    }
+    mean /= n;
+    let scale = 1.0 / (hi - lo).max_element().max(f64::MIN_POSITIVE);
+    let mut cov = DMat3::ZERO;
+    for &i in range {
+        let v = (prims[i as usize].centroid().as_dvec3() - mean) * scale;
+        cov += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
+    }
+    let (_, vecs) = crate::bv::symmetric_eigen(cov);
+    let d = vecs.x_axis.as_vec3();
+    if d.is_finite() && d.length_squared() > 0.5 {
+        d
+    } else {
+        Vec3::X
+    }
+}
+
+/// Direction through the most distant pair among the six axis-extreme centroids.
+fn distant_direction<P: Primitive>(prims: &[P], range: &[u32]) -> Vec3 {
+    let c = |i: u32| prims[i as usize].centroid();
+    let mut lo = [range[0]; 3];
+    let mut hi = [range[0]; 3];
+    for &i in range {
+        let p = c(i);
+        for k in 0..3 {
+            if p[k] < c(lo[k])[k] {
+                lo[k] = i;
+            }
+            if p[k] > c(hi[k])[k] {
+                hi[k] = i;
+            }
+        }
+    }
+    let mut best = Vec3::X;
+    let mut best_d = -1.0f64;
+    for k in 0..3 {
+        let v = c(hi[k]).as_dvec3() - c(lo[k]).as_dvec3();
+        if v.length_squared() > best_d {
+            best_d = v.length_squared();
+            best = v.normalize_or(DVec3::X).as_vec3();
+        }
+    }
+    best
+}
+
+/// Scores candidate splits and returns the best plan (without moving anything
+/// except for median/sweep evaluation, which reorder the range).
+#[allow(clippy::too_many_arguments)]
+fn plan<P: Primitive, B: BoundingVolume>(
+    prims: &[P],
+    range: &mut [u32],
+    scratch: &mut [u32],
+    task: &Task,
+    bv: &B,
+    axis: AxisChoice,
+    split: SplitPoint,
+    partition: Partition,
+    norm: &Norm,
+) -> Option<Plan> {
+    if let (SplitPoint::Bins(k), AxisChoice::BestOfXyz, Partition::SurfaceArea) =
+        (split, axis, partition)
+    {
+        return plan_binned_sah(prims, range, task, k as usize, norm);
+    }
+    let dirs = directions(prims, range, task, bv, axis);
+    let mut best: Option<(f32, Plan)> = None;
+    let mut consider = |c: f32, p: Plan| {
+        if best.is_none_or(|(b, _)| c < b) {
+            best = Some((c, p));
+        }
+    };
+    for &dir in dirs.as_slice() {
+        let t = |i: u32| dir.dot(prims[i as usize].centroid());
+        let (lo, hi) = projection_range(range, &t, dir, &task.centroids);
+        if !(hi > lo) {
+            continue; // every centroid projects to one point: nothing to split
+        }
+        match split {
+            SplitPoint::ObjectMedian => {
+                let mid = range.len() / 2;
+                range.select_nth_unstable_by(mid, |&a, &b| t(a).total_cmp(&t(b)));
+                let (l, _) = bounds_of(prims, &range[..mid]);
+                let (r, _) = bounds_of(prims, &range[mid..]);
+                let c = cost::<B>(partition, norm, &task.bounds, &l, mid as u32, &r, (range.len() - mid) as u32);
+                consider(c, Plan::Order { dir, mid });
+            }
+            SplitPoint::Sweep => {
+                if let Some((c, mid)) = sweep_sah(prims, range, scratch, &t, norm) {
+                    consider(c, Plan::Order { dir, mid });
+                }
+            }
+            _ => {
+                let binning = match split {
+                    SplitPoint::Bins(k) => Binning::Even {
+                        lo,
+                        scale: k as f32 / (hi - lo),
+                        k: k as usize,
+                    },
+                    SplitPoint::SpatialMedian => planes(&[lo * 0.5 + hi * 0.5]),
+                    SplitPoint::ObjectMean => {
+                        let mean = range.iter().map(|&i| t(i) as f64).sum::<f64>() / range.len() as f64;
+                        planes(&[mean as f32])
+                    }
+                    SplitPoint::RandomCentroids { count, seed } => {
+                        let mut rng = SplitMix(seed ^ (task.node as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+                        let mut p = [0.0f32; MAX_BINS];
+                        let m = (count as usize).min(MAX_BINS);
+                        for slot in p.iter_mut().take(m) {
+                            *slot = t(range[(rng.next() % range.len() as u64) as usize]);
+                        }
+                        planes(&p[..m])
+                    }
+                    SplitPoint::ObjectMedian | SplitPoint::Sweep => unreachable_plan(),
+                };
+                if let Some((c, boundary)) = evaluate_bins::<P, B>(prims, range, &t, &binning, partition, norm, task) {
+                    consider(
+                        c,
+                        Plan::Plane {
+                            dir,
+                            binning,
+                            boundary,
+                        },
+                    );
+                }
+            }
+        }
+    }
+    best.map(|(_, p)| p)
+}
+
+/// A binning that never matches (kept total instead of panicking).
+fn unreachable_plan() -> Binning {
+    Binning::Planes {
+        planes: [0.0; MAX_BINS],
+        m: 0,
+    }
+}
+
+fn planes(values: &[f32]) -> Binning {
+    let mut p = [0.0f32; MAX_BINS];
+    let m = values.len().min(MAX_BINS - 1);
+    p[..m].copy_from_slice(&values[..m]);
+    p[..m].sort_unstable_by(f32::total_cmp);
+    // Remove duplicates so no bin is empty by construction.
+    let mut k = 0;
+    for i in 0..m {
+        if k == 0 || p[i] != p[k - 1] {
+            p[k] = p[i];
+            k += 1;
+        }
+    }
+    Binning::Planes { planes: p, m: k }
+}
+
+fn projection_range(range: &[u32], t: &impl Fn(u32) -> f32, dir: Vec3, centroids: &Aabb) -> (f32, f32) {
+    for k in 0..3 {
+        if dir == crate::bv::Axes::XYZ.axes[k] {
+            return (centroids.min[k], centroids.max[k]);
+        }
+    }
+    let mut lo = f32::INFINITY;
+    let mut hi = f32::NEG_INFINITY;
+    for &i in range {
+        let v = t(i);
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    (lo, hi)
+}
+
+/// Bins the range and scores every boundary; returns (cost, boundary).
+fn evaluate_bins<P: Primitive, B: BoundingVolume>(
+    prims: &[P],
+    range: &[u32],
+    t: &impl Fn(u32) -> f32,
+    binning: &Binning,
+    partition: Partition,
+    norm: &Norm,
+    task: &Task,
+) -> Option<(f32, usize)> {
+    let k = binning.bins();
+    let mut bins = [EMPTY_BIN; MAX_BINS];
+    for &i in range {
+        let b = &mut bins[binning.bin(t(i))];
+        b.bounds = b.bounds.union(&prims[i as usize].bounds());
+        b.count += 1;
+    }
+    let mut right = [EMPTY_BIN; MAX_BINS];
+    let mut acc = EMPTY_BIN;
+    for j in (1..k).rev() {
+        acc.bounds = acc.bounds.union(&bins[j].bounds);
+        acc.count += bins[j].count;
+        right[j] = acc;
+    }
+    let mut left = EMPTY_BIN;
+    let mut best: Option<(f32, usize)> = None;
+    for j in 1..k {
+        left.bounds = left.bounds.union(&bins[j - 1].bounds);
+        left.count += bins[j - 1].count;
+        if left.count == 0 || right[j].count == 0 {
+            continue;
+        }
+        let c = cost::<B>(
+            partition,
+            norm,
+            &task.bounds,
+            &left.bounds,
+            left.count,
+            &right[j].bounds,
+            right[j].count,
+        );
+        if best.is_none_or(|(b, _)| c < b) {
+            best = Some((c, j));
+        }
+    }
+    best
+}
+
+/// The fast path: one pass bins every primitive along x, y and z at once.
+fn plan_binned_sah<P: Primitive>(
+    prims: &[P],
+    range: &[u32],
+    task: &Task,
+    k: usize,
+    norm: &Norm,
+) -> Option<Plan> {
+    let c = &task.centroids;
+    let ext = c.extent();
+    let mut scale = [0.0f32; 3];
+    for a in 0..3 {
+        scale[a] = if ext[a] > 0.0 { k as f32 / ext[a] } else { 0.0 };
+    }
+    let mut bins = [[EMPTY_BIN; MAX_BINS]; 3];
+    for &i in range {
+        let p = &prims[i as usize];
+        let b = p.bounds();
+        let ctr = p.centroid();
+        for a in 0..3 {
+            let bin = &mut bins[a][even_bin(ctr[a], c.min[a], scale[a], k)];
+            bin.bounds = bin.bounds.union(&b);
+            bin.count += 1;
+        }
+    }
+    let mut best: Option<(f32, Plan)> = None;
+    for (a, bins) in bins.iter().enumerate() {
+        if scale[a] == 0.0 {
+            continue;
+        }
+        let mut right_cost = [0.0f32; MAX_BINS];
+        let mut acc = EMPTY_BIN;
+        for j in (1..k).rev() {
+            acc.bounds = acc.bounds.union(&bins[j].bounds);
+            acc.count += bins[j].count;
+            right_cost[j] = if acc.count > 0 {
+                norm.half_area(&acc.bounds) * acc.count as f32
+            } else {
+                f32::INFINITY
+            };
+        }
+        let mut left = EMPTY_BIN;
+        for j in 1..k {
+            left.bounds = left.bounds.union(&bins[j - 1].bounds);
+            left.count += bins[j - 1].count;
+            if left.count == 0 || left.count as usize == range.len() {
+                continue;
+            }
+            let cst = norm.half_area(&left.bounds) * left.count as f32 + right_cost[j];
+            if best.as_ref().is_none_or(|(b, _)| cst < *b) {
+                best = Some((
+                    cst,
+                    Plan::Axis {
+                        axis: a,
+                        lo: c.min[a],
+                        scale: scale[a],
+                        k,
+                        boundary: j,
+                    },
+                ));
+            }
+        }
+    }
+    best.map(|(_, p)| p)
+}
+
+/// Exact SAH sweep along one direction; `scratch` holds right-side costs as f32 bits.
+fn sweep_sah<P: Primitive>(
+    prims: &[P],
+    range: &mut [u32],
+    scratch: &mut [u32],
+    t: &impl Fn(u32) -> f32,
+    norm: &Norm,
+) -> Option<(f32, usize)> {
+    let n = range.len();
+    if scratch.len() < n {
+        return None;
+    }
+    range.sort_unstable_by(|&a, &b| t(a).total_cmp(&t(b)));
+    let mut acc = Aabb::EMPTY;
+    for j in (1..n).rev() {
+        acc = acc.union(&prims[range[j] as usize].bounds());
+        scratch[j] = (norm.half_area(&acc) * (n - j) as f32).to_bits();
+    }
+    let mut left = Aabb::EMPTY;
+    let mut best: Option<(f32, usize)> = None;
+    for j in 1..n {
+        left = left.union(&prims[range[j - 1] as usize].bounds());
+        let c = norm.half_area(&left) * j as f32 + f32::from_bits(scratch[j]);
+        if best.is_none_or(|(b, _)| c < b) {
+            best = Some((c, j));
+        }
+    }
+    best
+}
+
+/// Partitions the range by the plan and measures both halves.
+fn apply<P: Primitive>(prims: &[P], range: &mut [u32], plan: Plan) -> Halves {
+    match plan {
+        Plan::Axis {
+            axis,
+            lo,
+            scale,
+            k,
+            boundary,
+        } => partition_by(prims, range, |c| even_bin(c[axis], lo, scale, k) < boundary),
+        Plan::Plane {
+            dir,
+            binning,
+            boundary,
+        } => partition_by(prims, range, |c| binning.bin(dir.dot(c)) < boundary),
+        Plan::Order { dir, mid } => {
+            let t = |i: u32| dir.dot(prims[i as usize].centroid());
+            range.select_nth_unstable_by(mid, |&a, &b| t(a).total_cmp(&t(b)));
+            let (lb, lc) = bounds_of(prims, &range[..mid]);
+            let (rb, rc) = bounds_of(prims, &range[mid..]);
+            Halves {
+                mid,
+                bounds: [lb, rb],
+                centroids: [lc, rc],
+            }
+        }
+    }
+}
+
+/// In-place two-pointer partition; every element is classified exactly once
+/// and its bounds added to its side.
+fn partition_by<P: Primitive>(prims: &[P], range: &mut [u32], goes_left: impl Fn(Vec3) -> bool) -> Halves {
+    let mut bounds = [Aabb::EMPTY; 2];
+    let mut centroids = [Aabb::EMPTY; 2];
+    let (mut i, mut j) = (0, range.len());
+    while i < j {
+        let p = &prims[range[i] as usize];
+        let c = p.centroid();
+        let side = if goes_left(c) {
+            i += 1;
+            0
+        } else {
+            j -= 1;
+            range.swap(i, j);
+            1
+        };
+        bounds[side] = bounds[side].union(&p.bounds());
+        centroids[side].grow(c);
+    }
+    Halves {
+        mid: i,
+        bounds,
+        centroids,
+    }
+}
+
+/// Makes every parent contain its children's volumes. AABBs and k-DOPs fitted
+/// top-down already do; a sphere or OBB fitted to a superset may not contain a
+/// child fitted to a subset, so it is enlarged (or replaced by the children's
+/// merge when that is smaller). Children always follow their parent in the
+/// array, so one reverse sweep sees children before parents.
+fn refit_to_contain_children<B: BoundingVolume>(nodes: &mut [Node<B>]) {
+    for i in (0..nodes.len()).rev() {
+        if let Some((l, r)) = nodes[i].children() {
+            let (lb, rb) = (nodes[l as usize].bv, nodes[r as usize].bv);
+            let bv = nodes[i].bv;
+            if bv.contains(&lb) && bv.contains(&rb) {
+                continue;
+            }
+            let enlarged = bv.merge(&lb).merge(&rb);
+            let merged = lb.merge(&rb);
+            let mut pick = if merged.volume() < enlarged.volume() { merged } else { enlarged };
+            // Merges are conservative but a rounding step may still leave a hair
+            // outside; fall back to merging again until containment holds.
+            for _ in 0..4 {
+                if pick.contains(&lb) && pick.contains(&rb) {
+                    break;
+                }
+                pick = pick.merge(&lb).merge(&rb);
+            }
+            nodes[i].bv = pick;
+        }
+    }
+}
+
+/// SplitMix64: a tiny seeded generator for reproducible random candidates.
+#[derive(Clone, Copy, Debug)]
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+}

@@ -1,0 +1,191 @@
+//! Bounding volumes: the shapes a hierarchy wraps around its primitives.
+//!
+//! Lecture: *bounding volumes* and *desired characteristics*. A tighter volume
+//! prunes more (smaller `Nv`, `Np` in the cost function) but costs more to test
+//! (larger `Cv`). The four kinds here span that trade-off:
+//!
+//! | volume | test cost | tightness | fit |
+//! |---|---|---|---|
+//! | [`Aabb`] | cheapest | loose on rotated shapes | min/max |
+//! | [`Sphere`] | cheap | loose on long shapes | Ritter, refined Ritter, exact Welzl |
+//! | [`Obb`] | expensive (15 axes) | tight on rotated shapes | PCA |
+//! | [`Kdop`] | k/2 interval tests | between AABB and hull | min/max along fixed directions |
+//!
+//! Every fit is *conservative in `f32`*: the fitting code computes in `f64` and
+//! rounds outward, so every input point passes [`BoundingVolume::contains_point`].
+//! Every overlap test errs only towards "overlapping", so a hierarchy never
+//! prunes a pair that really touches.
+
+mod aabb;
+mod eigen;
+mod kdop;
+mod obb;
+mod sphere;
+
+pub use aabb::Aabb;
+pub use eigen::symmetric_eigen;
+pub use kdop::{Dop14, Dop18, Dop26, Kdop};
+pub use obb::Obb;
+pub use sphere::Sphere;
+
+use glam::Vec3;
+
+/// A random-access set of points, so fits can make several passes without a buffer.
+pub trait PointSet {
+    /// Number of points.
+    fn len(&self) -> usize;
+    /// The `i`-th point, `i < len()`.
+    fn point(&self, i: usize) -> Vec3;
+    /// `true` when there are no points.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl PointSet for [Vec3] {
+    fn len(&self) -> usize {
+        <[Vec3]>::len(self)
+    }
+    fn point(&self, i: usize) -> Vec3 {
+        self[i]
+    }
+}
+
+impl<const N: usize> PointSet for [Vec3; N] {
+    fn len(&self) -> usize {
+        N
+    }
+    fn point(&self, i: usize) -> Vec3 {
+        self[i]
+    }
+}
+
+/// A random-access set of boxes (the primitive bounds beneath a node).
+pub trait BoxSet {
+    /// Number of boxes.
+    fn len(&self) -> usize;
+    /// The `i`-th box.
+    fn aabb(&self, i: usize) -> Aabb;
+    /// `true` when there are no boxes.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl BoxSet for [Aabb] {
+    fn len(&self) -> usize {
+        <[Aabb]>::len(self)
+    }
+    fn aabb(&self, i: usize) -> Aabb {
+        self[i]
+    }
+}
+
+/// The eight corners of every box of a [`BoxSet`], seen as one point set.
+#[derive(Clone, Copy, Debug)]
+pub struct Corners<'a, S: ?Sized>(pub &'a S);
+
+impl<S: BoxSet + ?Sized> PointSet for Corners<'_, S> {
+    fn len(&self) -> usize {
+        self.0.len() * 8
+    }
+    fn point(&self, i: usize) -> Vec3 {
+        self.0.aabb(i / 8).corner(i % 8)
+    }
+}
+
+/// Up to 13 unit axes of a volume, used by the "axes of the parent volume" split choice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Axes {
+    /// Storage; only the first `len` entries are meaningful.
+    pub axes: [Vec3; 13],
+    /// Number of axes.
+    pub len: usize,
+}
+
+impl Axes {
+    /// The three coordinate axes.
+    pub const XYZ: Axes = Axes {
+        axes: [
+            Vec3::X,
+            Vec3::Y,
+            Vec3::Z,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::ZERO,
+        ],
+        len: 3,
+    };
+
+    /// The axes as a slice.
+    pub fn as_slice(&self) -> &[Vec3] {
+        &self.axes[..self.len]
+    }
+}
+
+/// The interface every bounding volume implements; builders and queries are
+/// generic over it.
+///
+/// ```
+/// use bvhkit::{Aabb, BoundingVolume, Sphere};
+/// use glam::Vec3;
+/// let pts = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0)];
+/// let s = Sphere::fit(&pts);
+/// let b = Aabb::fit(&pts);
+/// assert!(pts.iter().all(|&p| s.contains_point(p) && b.contains_point(p)));
+/// assert!(s.overlaps(&Sphere::new(Vec3::new(3.0, 0.0, 0.0), 1.5)));
+/// ```
+pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
+    /// Short name for tables ("aabb", "sphere", ...).
+    const NAME: &'static str;
+    /// The empty volume: the identity of [`merge`](Self::merge), contains nothing.
+    const EMPTY: Self;
+
+    /// Fits a volume around a non-empty point set. Conservative: every point is inside.
+    fn fit<S: PointSet + ?Sized>(points: &S) -> Self;
+    /// The volume of this kind around a box (contains the whole box).
+    fn from_aabb(aabb: &Aabb) -> Self;
+    /// Fits around a set of boxes whose union is `union` (already known to the
+    /// caller, which lets [`Aabb`] skip the work). Default: fit the corners.
+    fn fit_boxes<S: BoxSet + ?Sized>(boxes: &S, union: &Aabb) -> Self {
+        let _ = union;
+        Self::fit(&Corners(boxes))
+    }
+    /// A volume containing both `self` and `other`.
+    fn merge(&self, other: &Self) -> Self;
+    /// Conservative overlap test: `false` only when the volumes are disjoint.
+    fn overlaps(&self, other: &Self) -> bool;
+    /// Conservative overlap test against a box.
+    fn overlaps_aabb(&self, aabb: &Aabb) -> bool;
+    /// Whether `p` is inside (boundary included), decided without rounding loss.
+    fn contains_point(&self, p: Vec3) -> bool;
+    /// Whether `other` lies entirely inside `self`.
+    fn contains(&self, other: &Self) -> bool;
+    /// Whether the whole box lies inside `self`.
+    fn contains_aabb(&self, aabb: &Aabb) -> bool {
+        (0..8).all(|i| self.contains_point(aabb.corner(i)))
+    }
+    /// Volume (the k-DOP reports an upper bound, see its docs).
+    fn volume(&self) -> f32;
+    /// Surface area (the k-DOP reports an upper bound, see its docs).
+    fn surface_area(&self) -> f32;
+    /// The size measure the "descend the larger volume" rule compares.
+    fn size(&self) -> f32 {
+        self.volume()
+    }
+    /// The enclosing axis-aligned box.
+    fn aabb(&self) -> Aabb;
+    /// The volume's own axes (for the "parent volume axes" split choice).
+    fn axes(&self) -> Axes {
+        Axes::XYZ
+    }
+    /// Whether this is the empty volume.
+    fn is_empty(&self) -> bool;
+}

@@ -1,0 +1,320 @@
+//! Oriented bounding box: centre, three orthonormal axes, half extents.
+//!
+//! Fitted by principal component analysis: the eigenvectors of the points'
+//! covariance give the axes. PCA can be arbitrarily bad (clustered points drag
+//! the axes; a cube's covariance has no preferred axes), so the fit keeps the
+//! axis-aligned box when that is smaller. Overlap is the separating-axis test
+//! over 15 axes, with the usual epsilon on the rotation terms so two nearly
+//! parallel edges (cross product near zero) cannot produce a false separation.
+
+use super::{Aabb, Axes, BoundingVolume, PointSet};
+use crate::round;
+use glam::{DMat3, DVec3, Vec3};
+
+/// An oriented box: the set of `x` with `|axes[i] . (x - center)| <= half_extents[i]`.
+///
+/// ```
+/// use bvhkit::{BoundingVolume, Obb};
+/// use glam::Vec3;
+/// // Points along the diagonal: the OBB is a thin stick, far smaller than the AABB.
+/// let pts: Vec<Vec3> = (0..50).map(|i| Vec3::splat(i as f32) + Vec3::new(0.1, -0.1, 0.0) * (i % 2) as f32).collect();
+/// let obb = Obb::fit(pts.as_slice());
+/// assert!(pts.iter().all(|&p| obb.contains_point(p)));
+/// assert!(obb.volume() < bvhkit::Aabb::fit(pts.as_slice()).volume() * 0.1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub struct Obb {
+    /// Centre.
+    pub center: Vec3,
+    /// Unit axes, mutually orthogonal.
+    pub axes: [Vec3; 3],
+    /// Half extent along each axis (negative for the empty box).
+    pub half_extents: Vec3,
+}
+
+impl Obb {
+    /// The empty box.
+    pub const EMPTY: Obb = Obb {
+        center: Vec3::ZERO,
+        axes: [Vec3::X, Vec3::Y, Vec3::Z],
+        half_extents: Vec3::splat(-1.0),
+    };
+
+    /// Fits a box with the given (orthonormal) axes tightly around the points,
+    /// computing in `f64` and rounding the extents up.
+    pub fn fit_with_axes<S: PointSet + ?Sized>(points: &S, axes: [Vec3; 3]) -> Obb {
+        if points.is_empty() {
+            return Obb::EMPTY;
+        }
+        let ax = axes.map(|a| a.as_dvec3());
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for i in 0..points.len() {
+            let p = points.point(i).as_dvec3();
+            let t = DVec3::new(ax[0].dot(p), ax[1].dot(p), ax[2].dot(p));
+            lo = lo.min(t);
+            hi = hi.max(t);
+        }
+        let mid = (lo + hi) * 0.5;
+        let center = (ax[0] * mid.x + ax[1] * mid.y + ax[2] * mid.z).as_vec3();
+        let c = center.as_dvec3();
+        // Re-measure from the rounded centre so containment holds exactly.
+        let mut e = DVec3::ZERO;
+        for i in 0..points.len() {
+            let v = points.point(i).as_dvec3() - c;
+            e = e.max(DVec3::new(
+                ax[0].dot(v).abs(),
+                ax[1].dot(v).abs(),
+                ax[2].dot(v).abs(),
+            ));
+        }
+        let pad = 1.0 + 8.0 * f64::EPSILON;
+        Obb {
+            center,
+            axes,
+            half_extents: Vec3::new(
+                round::up(e.x * pad),
+                round::up(e.y * pad),
+                round::up(e.z * pad),
+            ),
+        }
+    }
+
+    /// The PCA axes of a point set (orthonormal, by decreasing variance).
+    pub fn pca_axes<S: PointSet + ?Sized>(points: &S) -> [Vec3; 3] {
+        let n = points.len().max(1) as f64;
+        let mut mean = DVec3::ZERO;
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for i in 0..points.len() {
+            let p = points.point(i).as_dvec3();
+            mean += p;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        mean /= n;
+        // Normalise so the covariance never overflows, whatever the coordinates.
+        let scale = 1.0 / (hi - lo).max_element().max(f64::MIN_POSITIVE);
+        let mut cov = DMat3::ZERO;
+        for i in 0..points.len() {
+            let v = (points.point(i).as_dvec3() - mean) * scale;
+            cov += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
+        }
+        let (_, vecs) = crate::bv::symmetric_eigen(cov * (1.0 / n));
+        orthonormal(vecs)
+    }
+
+    /// PCA fit, falling back to the axis-aligned box when that is not larger.
+    pub fn pca<S: PointSet + ?Sized>(points: &S) -> Obb {
+        if points.is_empty() {
+            return Obb::EMPTY;
+        }
+        let aligned = Obb::fit_with_axes(points, [Vec3::X, Vec3::Y, Vec3::Z]);
+        let rotated = Obb::fit_with_axes(points, Obb::pca_axes(points));
+        if rotated.volume() < aligned.volume() * 0.999 {
+            rotated
+        } else if rotated.volume() == 0.0 && aligned.volume() == 0.0 {
+            // Flat sets: compare areas instead.
+            if rotated.surface_area() < aligned.surface_area() {
+                rotated
+            } else {
+                aligned
+            }
+        } else {
+            aligned
+        }
+    }
+
+    /// The eight corners, in `f64`.
+    fn corners64(&self) -> [DVec3; 8] {
+        let c = self.center.as_dvec3();
+        let e = self.half_extents.as_dvec3();
+        let a = self.axes.map(|a| a.as_dvec3());
+        core::array::from_fn(|i| {
+            let sx = if i & 1 == 0 { -1.0 } else { 1.0 };
+            let sy = if i & 2 == 0 { -1.0 } else { 1.0 };
+            let sz = if i & 4 == 0 { -1.0 } else { 1.0 };
+            c + a[0] * (sx * e.x) + a[1] * (sy * e.y) + a[2] * (sz * e.z)
+        })
+    }
+
+    fn contains64(&self, p: DVec3) -> bool {
+        let v = p - self.center.as_dvec3();
+        (0..3).all(|k| self.axes[k].as_dvec3().dot(v).abs() <= self.half_extents[k] as f64)
+    }
+}
+
+/// Gram-Schmidt in f64, then round to f32 unit vectors; a right-handed frame.
+fn orthonormal(m: DMat3) -> [Vec3; 3] {
+    let mut a = m.x_axis.normalize_or(DVec3::X);
+    if !a.is_finite() {
+        a = DVec3::X;
+    }
+    let mut b = (m.y_axis - a * a.dot(m.y_axis)).normalize_or_zero();
+    if b.length_squared() < 0.5 {
+        b = a.any_orthonormal_vector();
+    }
+    let c = a.cross(b).normalize();
+    [a.as_vec3(), b.as_vec3(), c.as_vec3()]
+}
+
+struct Points8([DVec3; 16], usize);
+impl PointSet for Points8 {
+    fn len(&self) -> usize {
+        self.1
+    }
+    fn point(&self, i: usize) -> Vec3 {
+        self.0[i].as_vec3()
+    }
+}
+
+impl BoundingVolume for Obb {
+    const NAME: &'static str = "obb";
+    const EMPTY: Self = Obb::EMPTY;
+
+    fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
+        Obb::pca(points)
+    }
+
+    fn from_aabb(aabb: &Aabb) -> Self {
+        if BoundingVolume::is_empty(aabb) {
+            return Obb::EMPTY;
+        }
+        Obb::fit_with_axes(&[aabb.min, aabb.max], [Vec3::X, Vec3::Y, Vec3::Z])
+    }
+
+    fn merge(&self, other: &Self) -> Self {
+        if self.is_empty() {
+            return *other;
+        }
+        if other.is_empty() {
+            return *self;
+        }
+        // Corners rounded to f32 may fall a hair inside the f64 corners, so
+        // round each outward along its own direction from the centre of the set.
+        let mut pts = [DVec3::ZERO; 16];
+        pts[..8].copy_from_slice(&self.corners64());
+        pts[8..].copy_from_slice(&other.corners64());
+        let set = Points8(pts, 16);
+        let mut merged = Obb::pca(&set);
+        let grow = |m: &mut Obb| {
+            for p in &set.0 {
+                let v = *p - m.center.as_dvec3();
+                for k in 0..3 {
+                    let need = m.axes[k].as_dvec3().dot(v).abs() * (1.0 + 8.0 * f64::EPSILON);
+                    if need > m.half_extents[k] as f64 {
+                        m.half_extents[k] = round::up(need);
+                    }
+                }
+            }
+        };
+        grow(&mut merged);
+        merged
+    }
+
+    fn overlaps(&self, other: &Self) -> bool {
+        if self.is_empty() || other.is_empty() {
+            return false;
+        }
+        sat(self, other)
+    }
+
+    fn overlaps_aabb(&self, aabb: &Aabb) -> bool {
+        if BoundingVolume::is_empty(aabb) {
+            return false;
+        }
+        self.overlaps(&Obb::from_aabb(aabb))
+    }
+
+    fn contains_point(&self, p: Vec3) -> bool {
+        self.contains64(p.as_dvec3())
+    }
+
+    fn contains(&self, other: &Self) -> bool {
+        other.is_empty() || other.corners64().iter().all(|&p| self.contains64(p))
+    }
+
+    fn volume(&self) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * 2.0;
+        e.x * e.y * e.z
+    }
+
+    fn surface_area(&self) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * 2.0;
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    fn aabb(&self) -> Aabb {
+        if self.is_empty() {
+            return Aabb::EMPTY;
+        }
+        let mut b = Aabb::EMPTY;
+        let corners = self.corners64();
+        for k in 0..3 {
+            let lo = corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
+            let hi = corners.iter().map(|c| c[k]).fold(f64::NEG_INFINITY, f64::max);
+            let pad = (hi - lo).abs() * 4.0 * f64::EPSILON + hi.abs().max(lo.abs()) * f64::EPSILON;
+            b.min[k] = round::down(lo - pad);
+            b.max[k] = round::up(hi + pad);
+        }
+        b
+    }
+
+    fn axes(&self) -> Axes {
+        let mut a = Axes::XYZ;
+        a.axes[..3].copy_from_slice(&self.axes);
+        a
+    }
+
+    fn is_empty(&self) -> bool {
+        !self.half_extents.cmpge(Vec3::ZERO).all()
+    }
+}
+
+/// Separating-axis test over the 15 candidate axes (Gottschalk et al.; Ericson 4.4.1).
+/// Comparisons are widened by a relative slack so rounding errs towards overlap.
+fn sat(a: &Obb, b: &Obb) -> bool {
+    const GUARD: f32 = 1e-6;
+    let ea = a.half_extents;
+    let eb = b.half_extents;
+    let mut r = [[0.0f32; 3]; 3];
+    let mut abs_r = [[0.0f32; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            r[i][j] = a.axes[i].dot(b.axes[j]);
+            abs_r[i][j] = r[i][j].abs() + GUARD;
+        }
+    }
+    let tw = b.center - a.center;
+    let t = Vec3::new(tw.dot(a.axes[0]), tw.dot(a.axes[1]), tw.dot(a.axes[2]));
+    let scale = ea.max_element() + eb.max_element() + tw.abs().max_element();
+    let slack = round::SLACK * 4.0 * scale;
+    let separated = |dist: f32, ra: f32, rb: f32| dist > ra + rb + slack;
+    for i in 0..3 {
+        let rb = eb[0] * abs_r[i][0] + eb[1] * abs_r[i][1] + eb[2] * abs_r[i][2];
+        if separated(t[i].abs(), ea[i], rb) {
+            return false;
+        }
+    }
+    for j in 0..3 {
+        let ra = ea[0] * abs_r[0][j] + ea[1] * abs_r[1][j] + ea[2] * abs_r[2][j];
+        let dist = (t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]).abs();
+        if separated(dist, ra, eb[j]) {
+            return false;
+        }
+    }
+    for i in 0..3 {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        for j in 0..3 {
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            let ra = ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j];
+            let rb = eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
+            let dist = (t[i2] * r[i1][j] - t[i1] * r[i2][j]).abs();
+            if separated(dist, ra, rb) {
+                return false;
+            }
+        }
+    }
+    true
+}

@@ -1,0 +1,419 @@
+//! Bounding sphere: centre and radius; three fits of increasing quality.
+//!
+//! * [`Sphere::ritter`]: two passes, within ~5-20% of the minimum.
+//! * [`Sphere::ritter_refined`]: Ritter, then repeatedly shrink and regrow over a
+//!   shuffled order, keeping the smallest (Ericson's iterative refinement).
+//! * [`Sphere::welzl`]: the exact minimal sphere, Welzl's algorithm written as
+//!   four nested loops (no recursion, no buffer) over a pseudo-random order.
+//!
+//! All three end with the same conservative pass: the radius becomes the largest
+//! `f64` distance from the chosen centre, rounded up to `f32`.
+
+use super::{Aabb, BoundingVolume, PointSet};
+use crate::round;
+use glam::{DVec3, Vec3};
+
+/// A sphere. An empty sphere has a negative radius.
+///
+/// ```
+/// use bvhkit::{BoundingVolume, Sphere};
+/// use glam::Vec3;
+/// let pts = [Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.5, 0.0)];
+/// let exact = Sphere::welzl(&pts);
+/// assert!((exact.radius - 1.0).abs() < 1e-6);
+/// assert!(Sphere::ritter(&pts).radius >= exact.radius);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub struct Sphere {
+    /// Centre.
+    pub center: Vec3,
+    /// Radius (negative for the empty sphere).
+    pub radius: f32,
+}
+
+/// How many shrink-and-regrow passes [`BoundingVolume::fit`] uses for spheres.
+pub const DEFAULT_REFINEMENTS: usize = 4;
+
+/// Visits `0..n` in a fixed pseudo-random order: `i -> (a*i + b) mod n` with
+/// `gcd(a, n) = 1` is a permutation, needing no buffer.
+#[derive(Clone, Copy)]
+struct Shuffle {
+    n: u64,
+    a: u64,
+    b: u64,
+}
+
+impl Shuffle {
+    fn new(n: usize, seed: u64) -> Self {
+        let n = n.max(1) as u64;
+        let mut a = (0x9E37_79B9_7F4A_7C15u64 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D)) % n;
+        while gcd(a, n) != 1 {
+            a = (a + 1) % n;
+        }
+        Shuffle {
+            n,
+            a,
+            b: seed % n,
+        }
+    }
+    #[inline]
+    fn at(&self, i: usize) -> usize {
+        ((self.a as u128 * i as u128 + self.b as u128) % self.n as u128) as usize
+    }
+}
+
+fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+#[inline]
+fn d(v: Vec3) -> DVec3 {
+    v.as_dvec3()
+}
+
+/// Working sphere in f64 while fitting.
+#[derive(Clone, Copy, Debug)]
+struct S64 {
+    c: DVec3,
+    r: f64,
+}
+
+impl S64 {
+    #[inline]
+    fn contains(&self, p: DVec3) -> bool {
+        // Relative tolerance: the algorithm's decisions only need to be near-exact;
+        // the final conservative pass restores strict containment.
+        (p - self.c).length() <= self.r * (1.0 + 1e-9) + 1e-30
+    }
+    fn from2(a: DVec3, b: DVec3) -> S64 {
+        let c = (a + b) * 0.5;
+        S64 {
+            c,
+            r: (a - c).length().max((b - c).length()),
+        }
+    }
+    /// Circumsphere of a triangle (smallest sphere with all three on its boundary).
+    fn from3(a: DVec3, b: DVec3, c: DVec3) -> S64 {
+        let ab = b - a;
+        let ac = c - a;
+        let n = ab.cross(ac);
+        let den = 2.0 * n.length_squared();
+        if den <= 1e-300 || den < 1e-24 * ab.length_squared() * ac.length_squared() {
+            // Collinear: the two farthest points span the sphere.
+            return best_of_pairs(&[a, b, c]);
+        }
+        let off = (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared()) / den;
+        let center = a + off;
+        S64 {
+            c: center,
+            r: off.length(),
+        }
+    }
+    /// Smallest sphere with all four points on or inside, all four on the boundary when possible.
+    fn from4(a: DVec3, b: DVec3, c: DVec3, e: DVec3) -> S64 {
+        let u = b - a;
+        let v = c - a;
+        let w = e - a;
+        let det = 2.0 * u.dot(v.cross(w));
+        let scale = u.length() * v.length() * w.length();
+        if det.abs() > 1e-12 * scale && det != 0.0 {
+            let off = (v.cross(w) * u.length_squared()
+                + w.cross(u) * v.length_squared()
+                + u.cross(v) * w.length_squared())
+                / det;
+            return S64 {
+                c: a + off,
+                r: off.length(),
+            };
+        }
+        // Coplanar: the minimal sphere is spanned by a subset; try them all.
+        let pts = [a, b, c, e];
+        let mut best = best_of_pairs(&pts);
+        for (i, j, k) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
+            let s = S64::from3(pts[i], pts[j], pts[k]);
+            if s.r < best.r && pts.iter().all(|&p| s.contains(p)) {
+                best = s;
+            }
+        }
+        best
+    }
+}
+
+/// Smallest "diameter" sphere over pairs that contains all points (always exists: the farthest pair... or a grown one).
+fn best_of_pairs(pts: &[DVec3]) -> S64 {
+    let mut best: Option<S64> = None;
+    for i in 0..pts.len() {
+        for j in i + 1..pts.len() {
+            let s = S64::from2(pts[i], pts[j]);
+            if pts.iter().all(|&p| s.contains(p)) && best.is_none_or(|b| s.r < b.r) {
+                best = Some(s);
+            }
+        }
+    }
+    best.unwrap_or_else(|| {
+        // Not reachable for collinear input, but stay total: grow around the first.
+        let mut s = S64 { c: pts[0], r: 0.0 };
+        for &p in pts {
+            s.r = s.r.max((p - s.c).length());
+        }
+        s
+    })
+}
+
+impl Sphere {
+    /// The empty sphere.
+    pub const EMPTY: Sphere = Sphere {
+        center: Vec3::ZERO,
+        radius: -1.0,
+    };
+
+    /// A sphere from centre and radius.
+    pub const fn new(center: Vec3, radius: f32) -> Self {
+        Sphere { center, radius }
+    }
+
+    /// Rounds the working sphere's centre to `f32`, then sets the radius to the
+    /// largest exact distance to any point, rounded up: containment is guaranteed.
+    fn conservative<S: PointSet + ?Sized>(points: &S, c: DVec3) -> Sphere {
+        let center = c.as_vec3();
+        let cd = d(center);
+        let mut r2: f64 = 0.0;
+        for i in 0..points.len() {
+            r2 = r2.max((d(points.point(i)) - cd).length_squared());
+        }
+        Sphere {
+            center,
+            radius: round::up(libm::sqrt(r2) * (1.0 + 4.0 * f64::EPSILON)),
+        }
+    }
+
+    fn ritter64<S: PointSet + ?Sized>(points: &S) -> S64 {
+        let n = points.len();
+        // Most separated pair among the six extreme points along x, y, z.
+        let mut lo = [0usize; 3];
+        let mut hi = [0usize; 3];
+        for i in 1..n {
+            let p = points.point(i);
+            for k in 0..3 {
+                if p[k] < points.point(lo[k])[k] {
+                    lo[k] = i;
+                }
+                if p[k] > points.point(hi[k])[k] {
+                    hi[k] = i;
+                }
+            }
+        }
+        let mut best = (lo[0], hi[0]);
+        let mut best_d = -1.0;
+        for k in 0..3 {
+            let dd = (d(points.point(hi[k])) - d(points.point(lo[k]))).length_squared();
+            if dd > best_d {
+                best_d = dd;
+                best = (lo[k], hi[k]);
+            }
+        }
+        let mut s = S64::from2(d(points.point(best.0)), d(points.point(best.1)));
+        for i in 0..n {
+            grow(&mut s, d(points.point(i)));
+        }
+        s
+    }
+
+    /// Ritter's two-pass approximation: start from the most separated pair of
+    /// axis-extreme points, then grow just enough for each point outside.
+    pub fn ritter<S: PointSet + ?Sized>(points: &S) -> Sphere {
+        if points.is_empty() {
+            return Sphere::EMPTY;
+        }
+        let s = Self::ritter64(points);
+        Self::conservative(points, s.c)
+    }
+
+    /// Ritter, then `iterations` rounds of "shrink by 5%, regrow over a shuffled
+    /// order", keeping the smallest sphere seen.
+    pub fn ritter_refined<S: PointSet + ?Sized>(points: &S, iterations: usize) -> Sphere {
+        if points.is_empty() {
+            return Sphere::EMPTY;
+        }
+        let mut best = Self::ritter64(points);
+        let mut s = best;
+        let n = points.len();
+        for it in 0..iterations {
+            s.r *= 0.95;
+            let order = Shuffle::new(n, it as u64 + 1);
+            for i in 0..n {
+                grow(&mut s, d(points.point(order.at(i))));
+            }
+            if s.r < best.r {
+                best = s;
+            }
+        }
+        Self::conservative(points, best.c)
+    }
+
+    /// The exact minimal enclosing sphere (Welzl), as nested loops over a
+    /// pseudo-random order: expected linear time, no recursion, no buffer.
+    pub fn welzl<S: PointSet + ?Sized>(points: &S) -> Sphere {
+        let n = points.len();
+        if n == 0 {
+            return Sphere::EMPTY;
+        }
+        let order = Shuffle::new(n, 0x5eed);
+        let pt = |i: usize| d(points.point(order.at(i)));
+        let mut s = S64 { c: pt(0), r: 0.0 };
+        for i in 1..n {
+            let p = pt(i);
+            if s.contains(p) {
+                continue;
+            }
+            s = S64 { c: p, r: 0.0 };
+            for j in 0..i {
+                let q = pt(j);
+                if s.contains(q) {
+                    continue;
+                }
+                s = S64::from2(p, q);
+                for k in 0..j {
+                    let r = pt(k);
+                    if s.contains(r) {
+                        continue;
+                    }
+                    s = S64::from3(p, q, r);
+                    for l in 0..k {
+                        let t = pt(l);
+                        if !s.contains(t) {
+                            s = S64::from4(p, q, r, t);
+                        }
+                    }
+                }
+            }
+        }
+        Self::conservative(points, s.c)
+    }
+}
+
+/// Ritter's growth step: move the centre towards `p` just enough to include it.
+#[inline]
+fn grow(s: &mut S64, p: DVec3) {
+    let v = p - s.c;
+    let dist = v.length();
+    if dist > s.r {
+        let new_r = (s.r + dist) * 0.5;
+        s.c += v * ((new_r - s.r) / dist);
+        s.r = new_r;
+    }
+}
+
+impl BoundingVolume for Sphere {
+    const NAME: &'static str = "sphere";
+    const EMPTY: Self = Sphere::EMPTY;
+
+    fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
+        Sphere::ritter_refined(points, DEFAULT_REFINEMENTS)
+    }
+
+    fn from_aabb(aabb: &Aabb) -> Self {
+        if BoundingVolume::is_empty(aabb) {
+            return Sphere::EMPTY;
+        }
+        let c = d(aabb.min) * 0.5 + d(aabb.max) * 0.5;
+        Sphere::conservative(&[aabb.min, aabb.max], c)
+    }
+
+    fn merge(&self, other: &Self) -> Self {
+        if self.is_empty() {
+            return *other;
+        }
+        if other.is_empty() {
+            return *self;
+        }
+        let (c1, c2) = (d(self.center), d(other.center));
+        let (r1, r2) = (self.radius as f64, other.radius as f64);
+        let dist = (c2 - c1).length();
+        if dist + r2 <= r1 {
+            return *self;
+        }
+        if dist + r1 <= r2 {
+            return *other;
+        }
+        let r = (dist + r1 + r2) * 0.5;
+        let c = c1 + (c2 - c1) * ((r - r1) / dist);
+        let center = c.as_vec3();
+        let cd = d(center);
+        let radius = ((d(self.center) - cd).length() + r1).max((c2 - cd).length() + r2);
+        Sphere {
+            center,
+            radius: round::up(radius * (1.0 + 4.0 * f64::EPSILON)),
+        }
+    }
+
+    #[inline]
+    fn overlaps(&self, other: &Self) -> bool {
+        let r = self.radius + other.radius;
+        r >= 0.0 && (self.center - other.center).length_squared() <= r * r * (1.0 + round::SLACK)
+    }
+
+    #[inline]
+    fn overlaps_aabb(&self, aabb: &Aabb) -> bool {
+        self.radius >= 0.0
+            && aabb.distance_squared(self.center)
+                <= self.radius * self.radius * (1.0 + round::SLACK)
+    }
+
+    fn contains_point(&self, p: Vec3) -> bool {
+        (d(p) - d(self.center)).length() <= self.radius as f64
+    }
+
+    fn contains(&self, other: &Self) -> bool {
+        other.is_empty()
+            || (d(other.center) - d(self.center)).length() + other.radius as f64
+                <= self.radius as f64
+    }
+
+    fn contains_aabb(&self, aabb: &Aabb) -> bool {
+        // The farthest corner decides.
+        let c = self.center;
+        let far = Vec3::select(
+            (c - aabb.min).cmpgt(aabb.max - c),
+            aabb.min,
+            aabb.max,
+        );
+        self.contains_point(far)
+    }
+
+    fn volume(&self) -> f32 {
+        let r = self.radius.max(0.0);
+        4.0 / 3.0 * core::f32::consts::PI * r * r * r
+    }
+
+    fn surface_area(&self) -> f32 {
+        let r = self.radius.max(0.0);
+        4.0 * core::f32::consts::PI * r * r
+    }
+
+    fn size(&self) -> f32 {
+        self.radius
+    }
+
+    fn aabb(&self) -> Aabb {
+        if self.is_empty() {
+            return Aabb::EMPTY;
+        }
+        let r = Vec3::splat(self.radius);
+        // Outward rounding of c +/- r.
+        let mut b = Aabb::new(self.center - r, self.center + r);
+        for k in 0..3 {
+            b.min[k] = round::down(self.center[k] as f64 - self.radius as f64);
+            b.max[k] = round::up(self.center[k] as f64 + self.radius as f64);
+        }
+        b
+    }
+
+    fn is_empty(&self) -> bool {
+        self.radius < 0.0 || self.radius.is_nan()
+    }
+}

@@ -1,0 +1,112 @@
+//! The one error type of the crate.
+//!
+//! Every fallible operation returns [`Error`]; nothing in the core panics on bad
+//! input. Each variant names what was wrong and, where it helps, which primitive.
+
+use core::fmt;
+
+/// Everything that can go wrong when building or querying a hierarchy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// The primitive slice was empty: there is nothing to bound.
+    EmptyInput,
+    /// Primitive `primitive` has a NaN or infinite coordinate. One such value in a
+    /// min/max fold would poison every box above it, so it is rejected up front.
+    NonFiniteCoordinate {
+        /// Index of the offending primitive in the caller's slice.
+        primitive: usize,
+    },
+    /// Primitive `primitive` has a coordinate larger in magnitude than
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    CoordinateOutOfRange {
+        /// Index of the offending primitive in the caller's slice.
+        primitive: usize,
+    },
+    /// More primitives than a `u32` index can name.
+    IndexOverflow {
+        /// How many primitives were given.
+        count: usize,
+    },
+    /// The node buffer is too small; `needed` is an upper bound for this input.
+    NodeCapacity {
+        /// Nodes the build may need.
+        needed: usize,
+        /// Nodes the caller provided.
+        available: usize,
+    },
+    /// The primitive-index buffer is too small.
+    IndexCapacity {
+        /// Entries needed.
+        needed: usize,
+        /// Entries the caller provided.
+        available: usize,
+    },
+    /// A result buffer filled up; `found` results exist in total.
+    ResultCapacity {
+        /// Total results the query produced.
+        found: usize,
+        /// Capacity of the buffer.
+        capacity: usize,
+    },
+    /// A traversal needs a deeper stack than the fixed one it owns.
+    StackOverflow {
+        /// Depth of the tree that was queried.
+        depth: usize,
+        /// Depth the traversal stack supports.
+        capacity: usize,
+    },
+    /// The primitive slice passed to a query is not the one the tree was built over.
+    PrimitiveCountMismatch {
+        /// Primitive count the tree was built with.
+        tree: usize,
+        /// Length of the slice given to the query.
+        given: usize,
+    },
+    /// A builder option is out of its documented range.
+    InvalidConfig(&'static str),
+    /// A tree failed a structural check (see [`Bvh::validate`](crate::Bvh::validate)).
+    InvalidTree(&'static str),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::EmptyInput => write!(f, "no primitives were given"),
+            Error::NonFiniteCoordinate { primitive } => {
+                write!(f, "primitive {primitive} has a NaN or infinite coordinate")
+            }
+            Error::CoordinateOutOfRange { primitive } => write!(
+                f,
+                "primitive {primitive} has a coordinate beyond +/-{:e}",
+                crate::MAX_COORDINATE
+            ),
+            Error::IndexOverflow { count } => {
+                write!(f, "{count} primitives do not fit 32-bit indices")
+            }
+            Error::NodeCapacity { needed, available } => write!(
+                f,
+                "node buffer too small: need up to {needed} nodes, have {available}"
+            ),
+            Error::IndexCapacity { needed, available } => write!(
+                f,
+                "index buffer too small: need {needed} entries, have {available}"
+            ),
+            Error::ResultCapacity { found, capacity } => write!(
+                f,
+                "result buffer too small: {found} results, capacity {capacity}"
+            ),
+            Error::StackOverflow { depth, capacity } => write!(
+                f,
+                "tree depth {depth} exceeds the traversal stack capacity {capacity}"
+            ),
+            Error::PrimitiveCountMismatch { tree, given } => write!(
+                f,
+                "tree was built over {tree} primitives but {given} were given"
+            ),
+            Error::InvalidConfig(what) => write!(f, "invalid configuration: {what}"),
+            Error::InvalidTree(what) => write!(f, "invalid tree: {what}"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

@@ -1,0 +1,60 @@
+//! # bvhkit
+//!
+//! Bounding volume hierarchies for collision detection, following chapter 6 of
+//! Ericson's *Real-Time Collision Detection*: every bounding volume, build
+//! strategy and traversal rule of the textbook, as small selectable values.
+//!
+//! The core is `#![no_std]` and never allocates: the caller owns all storage
+//! (a `static` array on a microcontroller, a `Vec` on a desktop) and the tree
+//! refers to nodes by index into it.
+//!
+//! Data flows one way: primitives -> [`TopDown`] builder -> [`Bvh`] ->
+//! queries ([`Bvh::overlapping`], [`overlapping_pairs`]) -> your callback.
+//!
+//! ```
+//! use bvhkit::{overlapping_pairs, Aabb, Descent, Node, TopDown, Triangle};
+//! use glam::Vec3;
+//!
+//! // Two small "meshes": a row of triangles, and the same row shifted a little.
+//! let row = |dy: f32| -> Vec<Triangle> {
+//!     (0..8).map(|i| {
+//!         let o = Vec3::new(i as f32, dy, 0.0);
+//!         Triangle::new(o, o + Vec3::new(0.9, 0.0, 0.0), o + Vec3::new(0.0, 0.9, 0.0))
+//!     }).collect()
+//! };
+//! let (a, b) = (row(0.0), row(0.5));
+//!
+//! // Storage comes from the caller: at most 2n - 1 nodes and n indices.
+//! let mut nodes_a = [Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
+//! let mut nodes_b = [Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
+//! let (mut idx_a, mut idx_b) = ([0u32; 8], [0u32; 8]);
+//! let tree_a = TopDown::default().build(&a, &mut nodes_a, &mut idx_a)?;
+//! let tree_b = TopDown::default().build(&b, &mut nodes_b, &mut idx_b)?;
+//!
+//! let mut count = 0;
+//! overlapping_pairs(&tree_a, &a, &tree_b, &b, Descent::Larger, |_, _| count += 1)?;
+//! assert_eq!(count, bvhkit::brute_force::pairs(&a, &b, |_, _| {}));
+//! # Ok::<(), bvhkit::Error>(())
+//! ```
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod build;
+pub mod bv;
+mod error;
+mod primitive;
+pub mod query;
+pub mod round;
+mod stats;
+pub mod tree;
+
+pub use build::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
+pub use bv::{symmetric_eigen, Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, PointSet, Sphere};
+pub use error::Error;
+pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
+pub use query::{brute_force, overlapping_pairs, Collector, Descent};
+pub use stats::TreeStats;
+pub use tree::{max_nodes, Bvh, Node, MAX_DEPTH};
+
+pub use glam;

@@ -1,0 +1,167 @@
+//! Primitives: what the leaves of a hierarchy hold.
+//!
+//! A builder only needs two things from a primitive: its axis-aligned bounds
+//! and a representative point (the centroid) to sort it by. Anything
+//! implementing [`Primitive`] can be put in a tree: triangles, points, boxes,
+//! spheres, or your own types.
+
+use crate::bv::{Aabb, Sphere};
+use glam::Vec3;
+
+/// Largest coordinate magnitude accepted by the builders (1e32).
+///
+/// Beyond it, extents and areas overflow `f32` and cost comparisons lose their
+/// meaning; such input is rejected with [`Error::CoordinateOutOfRange`](crate::Error).
+/// Coordinates up to this bound (1e30 is tested) build and query exactly.
+pub const MAX_COORDINATE: f32 = 1.0e32;
+
+/// Something a hierarchy can bound.
+///
+/// ```
+/// use bvhkit::{Aabb, Primitive};
+/// use glam::Vec3;
+/// /// A capsule-like segment with a radius, as a user primitive.
+/// struct Stick { a: Vec3, b: Vec3, r: f32 }
+/// impl Primitive for Stick {
+///     fn bounds(&self) -> Aabb {
+///         Aabb::new(self.a.min(self.b) - self.r, self.a.max(self.b) + self.r)
+///     }
+///     fn is_finite(&self) -> bool {
+///         self.a.is_finite() && self.b.is_finite() && self.r.is_finite()
+///     }
+/// }
+/// let s = Stick { a: Vec3::ZERO, b: Vec3::X, r: 0.5 };
+/// assert_eq!(s.bounds().min, Vec3::new(-0.5, -0.5, -0.5));
+/// assert_eq!(s.centroid(), Vec3::new(0.5, 0.0, 0.0));
+/// ```
+pub trait Primitive {
+    /// The smallest axis-aligned box containing the primitive.
+    fn bounds(&self) -> Aabb;
+    /// The point builders sort by; the centre of the bounds unless overridden.
+    #[inline]
+    fn centroid(&self) -> Vec3 {
+        self.bounds().center()
+    }
+    /// Whether every coordinate is finite. `f32::min` ignores NaN, so this must
+    /// look at the raw data, not at [`bounds`](Self::bounds).
+    fn is_finite(&self) -> bool;
+}
+
+/// A triangle given by its three corners.
+///
+/// ```
+/// use bvhkit::{Primitive, Triangle};
+/// use glam::Vec3;
+/// let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+/// assert_eq!(t.bounds().max, Vec3::new(1.0, 1.0, 0.0));
+/// assert!((t.area() - 0.5).abs() < 1e-6);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[repr(C)]
+pub struct Triangle {
+    /// The three corners.
+    pub v: [Vec3; 3],
+}
+
+impl Triangle {
+    /// A triangle from three corners.
+    pub const fn new(a: Vec3, b: Vec3, c: Vec3) -> Self {
+        Triangle { v: [a, b, c] }
+    }
+
+    /// Area (zero for degenerate triangles).
+    pub fn area(&self) -> f32 {
+        (self.v[1] - self.v[0]).cross(self.v[2] - self.v[0]).length() * 0.5
+    }
+
+    /// The triangle moved by `offset`.
+    pub fn translated(&self, offset: Vec3) -> Triangle {
+        Triangle {
+            v: self.v.map(|p| p + offset),
+        }
+    }
+}
+
+impl Primitive for Triangle {
+    #[inline]
+    fn bounds(&self) -> Aabb {
+        Aabb::new(
+            self.v[0].min(self.v[1]).min(self.v[2]),
+            self.v[0].max(self.v[1]).max(self.v[2]),
+        )
+    }
+    fn is_finite(&self) -> bool {
+        self.v.iter().all(|p| p.is_finite())
+    }
+}
+
+impl Primitive for Vec3 {
+    #[inline]
+    fn bounds(&self) -> Aabb {
+        Aabb::from_point(*self)
+    }
+    #[inline]
+    fn centroid(&self) -> Vec3 {
+        *self
+    }
+    fn is_finite(&self) -> bool {
+        Vec3::is_finite(*self)
+    }
+}
+
+impl Primitive for Aabb {
+    #[inline]
+    fn bounds(&self) -> Aabb {
+        *self
+    }
+    fn is_finite(&self) -> bool {
+        Aabb::is_finite(self) && self.min.cmple(self.max).all()
+    }
+}
+
+impl Primitive for Sphere {
+    fn bounds(&self) -> Aabb {
+        crate::BoundingVolume::aabb(self)
+    }
+    fn centroid(&self) -> Vec3 {
+        self.center
+    }
+    fn is_finite(&self) -> bool {
+        self.center.is_finite() && self.radius.is_finite() && self.radius >= 0.0
+    }
+}
+
+impl<P: Primitive> Primitive for &P {
+    fn bounds(&self) -> Aabb {
+        (**self).bounds()
+    }
+    fn centroid(&self) -> Vec3 {
+        (**self).centroid()
+    }
+    fn is_finite(&self) -> bool {
+        (**self).is_finite()
+    }
+}
+
+/// Checks a primitive slice once, before any min/max fold can hide a bad value.
+pub(crate) fn validate<P: Primitive>(prims: &[P]) -> Result<(), crate::Error> {
+    use crate::Error;
+    if prims.is_empty() {
+        return Err(Error::EmptyInput);
+    }
+    if prims.len() > crate::tree::MAX_PRIMITIVES {
+        return Err(Error::IndexOverflow { count: prims.len() });
+    }
+    for (i, p) in prims.iter().enumerate() {
+        if !p.is_finite() {
+            return Err(Error::NonFiniteCoordinate { primitive: i });
+        }
+        let b = p.bounds();
+        if !(b.min.abs().max_element() <= MAX_COORDINATE
+            && b.max.abs().max_element() <= MAX_COORDINATE)
+        {
+            return Err(Error::CoordinateOutOfRange { primitive: i });
+        }
+    }
+    Ok(())
+}

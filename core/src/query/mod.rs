@@ -1,0 +1,21 @@
+//! Queries: what the hierarchy is for.
+//!
+//! Lecture: *hierarchy traversal* and *descent rules*. Every answer is defined at
+//! the primitive level (primitives whose bounds overlap the region; primitive
+//! pairs whose bounds overlap each other), so it is the same for every builder,
+//! volume type and layout: the tree only decides how much work is skipped.
+//! [`brute_force`] computes the same answers without a tree, as the reference.
+//!
+//! Results go to a callback or to a caller-provided buffer ([`Collector`]);
+//! nothing allocates. Every traversal owns a fixed stack sized from
+//! [`MAX_DEPTH`](crate::MAX_DEPTH).
+
+pub mod brute_force;
+mod collect;
+mod descent;
+mod pair;
+mod single;
+
+pub use collect::Collector;
+pub use descent::Descent;
+pub use pair::overlapping_pairs;

@@ -1,0 +1,118 @@
+//! Invariant checks for a tree (the `bvh_validation` of parry, for any volume).
+
+use super::{Bvh, Node, MAX_DEPTH};
+use crate::bv::BoundingVolume;
+use crate::primitive::Primitive;
+use crate::Error;
+
+fn test_and_set(seen: &mut [u32], i: usize) -> bool {
+    let (w, b) = (i / 32, 1u32 << (i % 32));
+    let was = seen[w] & b != 0;
+    seen[w] |= b;
+    was
+}
+
+/// Structural checks; returns the depth. Needs `seen` of `Bvh::seen_words` words.
+pub(super) fn structure<B: BoundingVolume>(
+    nodes: &[Node<B>],
+    indices: &[u32],
+    prim_count: usize,
+    seen: &mut [u32],
+) -> Result<u32, Error> {
+    if nodes.is_empty() {
+        return Err(Error::InvalidTree("no nodes"));
+    }
+    if indices.len() != prim_count {
+        return Err(Error::PrimitiveCountMismatch {
+            tree: indices.len(),
+            given: prim_count,
+        });
+    }
+    let words = Bvh::<B>::seen_words(nodes.len(), prim_count);
+    if seen.len() < words {
+        return Err(Error::InvalidConfig("validation scratch smaller than Bvh::seen_words"));
+    }
+    let seen = &mut seen[..words];
+    seen.fill(0);
+    // Each node reached exactly once, children after their parent, depth bounded.
+    let mut stack = [(0u32, 0u32); MAX_DEPTH + 1];
+    let mut top = 1;
+    let mut depth = 0;
+    let mut visited = 0usize;
+    let mut leaf_slots = 0usize;
+    test_and_set(seen, 0);
+    while top > 0 {
+        top -= 1;
+        let (i, d) = stack[top];
+        visited += 1;
+        depth = depth.max(d);
+        let node = &nodes[i as usize];
+        match node.children() {
+            None => {
+                let end = node.first as usize + node.count as usize;
+                if end > indices.len() {
+                    return Err(Error::InvalidTree("leaf range outside the index array"));
+                }
+                leaf_slots += node.count as usize;
+            }
+            Some((l, r)) => {
+                if l <= i || r as usize >= nodes.len() {
+                    return Err(Error::InvalidTree("child index out of range or not after its parent"));
+                }
+                if d as usize >= MAX_DEPTH || top + 2 > stack.len() {
+                    return Err(Error::InvalidTree("deeper than MAX_DEPTH"));
+                }
+                for c in [l, r] {
+                    if test_and_set(seen, c as usize) {
+                        return Err(Error::InvalidTree("a node is reached twice"));
+                    }
+                    stack[top] = (c, d + 1);
+                    top += 1;
+                }
+            }
+        }
+    }
+    if visited != nodes.len() {
+        return Err(Error::InvalidTree("some nodes are not reachable from the root"));
+    }
+    if leaf_slots != indices.len() {
+        return Err(Error::InvalidTree("leaves do not cover the index array exactly"));
+    }
+    // Each primitive exactly once.
+    seen.fill(0);
+    for &p in indices {
+        if p as usize >= prim_count {
+            return Err(Error::InvalidTree("primitive index out of range"));
+        }
+        if test_and_set(seen, p as usize) {
+            return Err(Error::InvalidTree("a primitive appears twice"));
+        }
+    }
+    Ok(depth)
+}
+
+/// Geometric checks: parents contain children, leaves contain their primitives' bounds.
+pub(super) fn containment<B: BoundingVolume, P: Primitive>(
+    bvh: &Bvh<'_, B>,
+    prims: &[P],
+) -> Result<(), Error> {
+    for node in bvh.nodes() {
+        match node.children() {
+            Some((l, r)) => {
+                let nodes = bvh.nodes();
+                if !node.bv.contains(&nodes[l as usize].bv) || !node.bv.contains(&nodes[r as usize].bv)
+                {
+                    return Err(Error::InvalidTree("a node does not contain its children"));
+                }
+            }
+            None => {
+                for &p in bvh.leaf_primitives(node) {
+                    if !node.bv.contains_aabb(&prims[p as usize].bounds()) {
+                        return Err(Error::InvalidTree("a leaf does not contain its primitive's bounds"));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
