@@ -1,1 +1,199 @@
-//! placeholder
+//! Shared helpers for the integration tests: scene generators, every builder
+//! configuration, and the brute-force comparison run on every tree.
+
+use bvhkit::{
+    brute_force, overlapping_pairs, Aabb, AxisChoice, BoundingVolume, Bvh, Descent, Node,
+    OnFailure, Partition, Primitive, SplitPoint, Stop, TopDown, Triangle,
+};
+use bvhkit::glam::Vec3;
+use proptest::prelude::*;
+
+/// Every partition criterion.
+pub const PARTITIONS: [Partition; 7] = [
+    Partition::Balance,
+    Partition::SurfaceArea,
+    Partition::Volume,
+    Partition::LargerChild,
+    Partition::Overlap,
+    Partition::Separation,
+    Partition::Weighted {
+        surface_area: 1.0,
+        volume: 0.5,
+        overlap: 2.0,
+        balance: 0.25,
+    },
+];
+
+/// Every axis choice.
+pub const AXES: [AxisChoice; 8] = [
+    AxisChoice::X,
+    AxisChoice::Y,
+    AxisChoice::Z,
+    AxisChoice::BestOfXyz,
+    AxisChoice::Longest,
+    AxisChoice::Variance,
+    AxisChoice::DistantPoints,
+    AxisChoice::ParentVolume,
+];
+
+/// Every split point (with a couple of parameter values).
+pub const SPLITS: [SplitPoint; 8] = [
+    SplitPoint::ObjectMedian,
+    SplitPoint::ObjectMean,
+    SplitPoint::SpatialMedian,
+    SplitPoint::Bins(2),
+    SplitPoint::Bins(16),
+    SplitPoint::Sweep,
+    SplitPoint::RandomCentroids { count: 4, seed: 7 },
+    SplitPoint::RandomCentroids { count: 31, seed: 1 },
+];
+
+/// A random but valid top-down configuration covering every option.
+pub fn any_top_down() -> impl Strategy<Value = TopDown> {
+    (
+        0..PARTITIONS.len(),
+        0..AXES.len(),
+        0..SPLITS.len(),
+        1u32..6,
+        prop_oneof![Just(0.0f32), Just(1e-3f32)],
+        prop_oneof![Just(64u32), 0u32..6],
+        any::<bool>(),
+    )
+        .prop_map(|(p, a, s, leaf, min_volume, max_depth, leaf_on_failure)| {
+            let split = SPLITS[s];
+            // The sweep scores the SAH only (documented, and an error otherwise).
+            let partition = if split == SplitPoint::Sweep {
+                Partition::SurfaceArea
+            } else {
+                PARTITIONS[p]
+            };
+            TopDown {
+                partition,
+                axis: AXES[a],
+                split,
+                stop: Stop {
+                    max_leaf_size: leaf,
+                    min_volume,
+                    max_depth,
+                },
+                on_failure: if leaf_on_failure {
+                    OnFailure::Leaf
+                } else {
+                    OnFailure::ForceSplit
+                },
+            }
+        })
+}
+
+/// Coordinate frames that stress floating point: near the origin, far away,
+/// tiny, and huge (1e30).
+pub const FRAMES: [(f32, f32); 5] = [(1.0, 0.0), (1.0, 1.0e5), (1.0e-3, 0.0), (1.0e27, 1.0e30), (1.0, -2.0e4)];
+
+fn point() -> impl Strategy<Value = Vec3> {
+    (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+/// One raw triangle: ordinary, zero-area (point or segment), or flat in z.
+fn triangle() -> impl Strategy<Value = Triangle> {
+    prop_oneof![
+        6 => (point(), point(), point()).prop_map(|(a, b, c)| Triangle::new(a, (a + b * 0.2) , a + c * 0.2)),
+        1 => point().prop_map(|a| Triangle::new(a, a, a)),
+        1 => (point(), point()).prop_map(|(a, b)| Triangle::new(a, b, a)),
+        1 => (point(), point()).prop_map(|(a, b)| Triangle::new(a, Vec3::new(b.x, b.y, a.z), Vec3::new(a.x, b.y, a.z))),
+    ]
+}
+
+/// A scene of `1..max` triangles with duplicates, in one of the [`FRAMES`].
+pub fn scene(max: usize) -> impl Strategy<Value = Vec<Triangle>> {
+    (prop::collection::vec(triangle(), 1..max), 0..FRAMES.len(), any::<u8>()).prop_map(
+        |(mut tris, frame, dup)| {
+            // Duplicate a few triangles exactly (identical centroids).
+            let k = tris.len();
+            for i in 0..(dup as usize % 4).min(k) {
+                let t = tris[i * 7 % k];
+                tris.push(t);
+            }
+            let (scale, offset) = FRAMES[frame];
+            for t in &mut tris {
+                for v in &mut t.v {
+                    *v = *v * scale + Vec3::splat(offset);
+                }
+            }
+            tris
+        },
+    )
+}
+
+/// Builds with Vec storage; returns the owned storage.
+pub fn build<B: BoundingVolume, P: Primitive>(
+    cfg: &TopDown,
+    prims: &[P],
+) -> Result<(Vec<Node<B>>, Vec<u32>, usize), bvhkit::Error> {
+    let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
+    let mut idx = vec![0u32; cfg.index_capacity(prims.len())];
+    let (used, depth) = {
+        let bvh: Bvh<B> = cfg.build(prims, &mut nodes, &mut idx)?;
+        (bvh.node_count(), bvh.depth())
+    };
+    nodes.truncate(used);
+    idx.truncate(prims.len());
+    Ok((nodes, idx, depth))
+}
+
+/// Opens owned storage as a validated tree.
+pub fn open<'a, B: BoundingVolume, P: Primitive>(
+    nodes: &'a [Node<B>],
+    idx: &'a [u32],
+    prims: &[P],
+) -> Bvh<'a, B> {
+    let mut seen = vec![0u32; Bvh::<B>::seen_words(nodes.len(), prims.len())];
+    match Bvh::from_parts(nodes, idx, prims, &mut seen) {
+        Ok(b) => b,
+        Err(e) => panic!("tree over {} primitives failed validation: {e}", prims.len()),
+    }
+}
+
+/// A query region derived from the scene so it usually hits something.
+pub fn region_in(prims: &[Triangle], a: f32, b: f32) -> Aabb {
+    let mut bounds = Aabb::EMPTY;
+    for t in prims {
+        bounds = bounds.union(&t.bounds());
+    }
+    let e = bounds.extent();
+    let lo = bounds.min + e * a.min(b);
+    let hi = bounds.min + e * a.max(b);
+    Aabb::new(lo, hi)
+}
+
+/// Checks one configuration and volume type against brute force: invariants,
+/// region query, and pair query under every descent rule.
+pub fn check_against_brute_force<B: BoundingVolume>(
+    cfg: &TopDown,
+    a: &[Triangle],
+    b: &[Triangle],
+    region: &Aabb,
+) -> Result<(), TestCaseError> {
+    let (na, ia, _) = build::<B, _>(cfg, a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    let (nb, ib, _) = build::<B, _>(cfg, b).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    let ta = open(&na, &ia, a);
+    let tb = open(&nb, &ib, b);
+
+    let mut got = Vec::new();
+    let n = ta.overlapping(a, region, |i| got.push(i)).unwrap();
+    let mut want = Vec::new();
+    brute_force::overlapping(a, region, |i| want.push(i));
+    got.sort_unstable();
+    prop_assert_eq!(n, got.len());
+    prop_assert_eq!(&got, &want, "region query, {} {:?}", B::NAME, cfg);
+
+    let mut want = Vec::new();
+    brute_force::pairs(a, b, |i, j| want.push((i, j)));
+    for rule in Descent::ALL {
+        let mut got = Vec::new();
+        let n = overlapping_pairs(&ta, a, &tb, b, rule, |i, j| got.push((i, j))).unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(n, got.len());
+        prop_assert_eq!(&got, &want, "pairs, {} {:?} {:?}", B::NAME, rule, cfg);
+    }
+    Ok(())
+}

@@ -9,7 +9,7 @@
 //!    [`Partition`] criterion), partition the index range in place, and
 //!    continue with both halves.
 //!
-//! The larger half is processed next and the smaller one pushed, so the stack
+//! The smaller half is processed next and the larger one pushed, so the stack
 //! never holds more than `log2(n) + 1` entries. The default configuration
 //! (binned SAH over x, y and z) has a dedicated single-pass binning loop; every
 //! other combination goes through the general evaluator.
@@ -366,8 +366,11 @@ impl TopDown {
                     };
                     let l = child(0, task.start, mid);
                     let r = child(1, mid, task.end);
-                    // Continue with the larger half; the pushed one is at most half.
-                    let (next, later) = if l.end - l.start >= r.end - r.start {
+                    // Defer the larger half and continue with the smaller one (as
+                    // quicksort recurses on the smaller side): everything pushed
+                    // before the deferred half is popped lies inside a range at
+                    // most half as large, so the stack stays below log2(n) + 1.
+                    let (next, later) = if l.end - l.start <= r.end - r.start {
                         (l, r)
                     } else {
                         (r, l)

@@ -1,0 +1,128 @@
+//! Proof that building and querying never touch the heap.
+//!
+//! A `harness = false` test binary with a counting global allocator: the count
+//! is read before and after each build/query; any difference is a failure.
+//! (Inside the normal test harness other threads allocate, so a global counter
+//! would be unreliable there.)
+
+use bvhkit::glam::Vec3;
+use bvhkit::{
+    overlapping_pairs, Aabb, BoundingVolume, Collector, Descent, Dop14, Dop26, Node, Obb, Sphere,
+    TopDown, Triangle,
+};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+#[allow(unsafe_code)]
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn count<R>(f: impl FnOnce() -> R) -> (R, usize) {
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let r = f();
+    (r, ALLOCATIONS.load(Ordering::SeqCst) - before)
+}
+
+fn grid(n: usize, shift: f32) -> Vec<Triangle> {
+    (0..n)
+        .map(|i| {
+            let o = Vec3::new((i % 17) as f32, (i / 17 % 13) as f32 + shift, (i / 221) as f32);
+            Triangle::new(o, o + Vec3::new(1.2, 0.1, 0.0), o + Vec3::new(0.0, 1.1, 0.3))
+        })
+        .collect()
+}
+
+const CONFIGS: [(&str, TopDown); 4] = [
+    ("sah", TopDown::sah()),
+    ("sah-sweep", TopDown::sah_sweep()),
+    ("median", TopDown::median()),
+    (
+        "variance-mean-volume",
+        TopDown {
+            partition: bvhkit::Partition::Volume,
+            axis: bvhkit::AxisChoice::Variance,
+            split: bvhkit::SplitPoint::ObjectMean,
+            ..TopDown::sah()
+        },
+    ),
+];
+
+fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
+    let a = grid(500, 0.0);
+    let b = grid(400, 0.4);
+    for (name, cfg) in CONFIGS {
+        // Storage is allocated here, outside the measured regions.
+        let mut na = vec![Node::<B>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut nb = vec![Node::<B>::EMPTY; bvhkit::max_nodes(b.len())];
+        let mut ia = vec![0u32; cfg.index_capacity(a.len())];
+        let mut ib = vec![0u32; cfg.index_capacity(b.len())];
+        let mut out = vec![(0u32, 0u32); 100_000];
+        let mut hits = vec![0u32; 1000];
+        let (trees, allocs) = count(|| {
+            let ta = cfg.build(&a, &mut na, &mut ia).unwrap();
+            let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
+            (ta, tb)
+        });
+        if allocs != 0 {
+            failures.push(format!("{} {name}: build allocated {allocs} times", B::NAME));
+        }
+        let (ta, tb) = trees;
+        let (found, allocs) = count(|| {
+            let mut total = 0;
+            for rule in Descent::ALL {
+                let mut c = Collector::new(&mut out);
+                overlapping_pairs(&ta, &a, &tb, &b, rule, |i, j| c.push((i, j))).unwrap();
+                total += c.finish().unwrap().len();
+            }
+            let mut c = Collector::new(&mut hits);
+            let region = Aabb::new(Vec3::splat(2.0), Vec3::splat(5.0));
+            ta.overlapping(&a, &region, |i| c.push(i)).unwrap();
+            total + c.finish().unwrap().len() + ta.stats().leaves
+        });
+        if allocs != 0 {
+            failures.push(format!("{} {name}: queries allocated {allocs} times", B::NAME));
+        }
+        if found == 0 {
+            failures.push(format!("{} {name}: the scene produced no results; the test would prove nothing", B::NAME));
+        }
+    }
+}
+
+fn main() {
+    let mut failures = Vec::new();
+    check::<Aabb>(&mut failures);
+    check::<Sphere>(&mut failures);
+    check::<Obb>(&mut failures);
+    check::<Dop14>(&mut failures);
+    check::<Dop26>(&mut failures);
+    // Sanity: the counter itself works.
+    let (_, n) = count(|| std::hint::black_box(vec![1u8; 10]));
+    if n == 0 {
+        failures.push("the counting allocator saw no allocation from vec![]".into());
+    }
+    let cases = 5 * CONFIGS.len() + 1;
+    for f in &failures {
+        eprintln!("FAILED: {f}");
+    }
+    println!("{} passed, {} failed", cases - failures.len().min(cases), failures.len());
+    if !failures.is_empty() {
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,255 @@
+//! Every failure in `shared/PITFALLS.md` (reported against other BVH libraries),
+//! turned into a test, plus regressions found while building bvhkit.
+
+use bvhkit::glam::Vec3;
+use bvhkit::{
+    brute_force, overlapping_pairs, Aabb, BoundingVolume, Bvh, Descent, Dop14, Error, Node, Obb,
+    OnFailure, Partition, SplitPoint, Sphere, TopDown, Triangle,
+};
+use bvhkit_tests::{build, open};
+
+fn pairs_sorted<B: BoundingVolume>(cfg: &TopDown, a: &[Triangle], b: &[Triangle], rule: Descent) -> Vec<(u32, u32)> {
+    let (na, ia, _) = build::<B, _>(cfg, a).unwrap();
+    let (nb, ib, _) = build::<B, _>(cfg, b).unwrap();
+    let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
+    let mut got = Vec::new();
+    overlapping_pairs(&ta, a, &tb, b, rule, |i, j| got.push((i, j))).unwrap();
+    got.sort_unstable();
+    got
+}
+
+fn brute(a: &[Triangle], b: &[Triangle]) -> Vec<(u32, u32)> {
+    let mut want = Vec::new();
+    brute_force::pairs(a, b, |i, j| want.push((i, j)));
+    want
+}
+
+fn tri_at(o: Vec3, s: f32) -> Triangle {
+    Triangle::new(o, o + Vec3::new(s, 0.0, 0.0), o + Vec3::new(0.0, s, s))
+}
+
+fn all_configs() -> Vec<TopDown> {
+    let mut v = vec![TopDown::sah(), TopDown::sah_sweep(), TopDown::median()];
+    for partition in bvhkit_tests::PARTITIONS {
+        for split in bvhkit_tests::SPLITS {
+            if split == SplitPoint::Sweep && partition != Partition::SurfaceArea {
+                continue;
+            }
+            for axis in bvhkit_tests::AXES {
+                v.push(TopDown { partition, split, axis, ..TopDown::sah() }.with_max_leaf_size(1));
+            }
+        }
+    }
+    v
+}
+
+/// Regression: the builder continued with the larger half and pushed the
+/// smaller; splits that peel one primitive at a time then grew the task stack
+/// linearly (found by the property tests at 40 entries).
+#[test]
+fn builder_stack_stays_logarithmic_when_splits_peel_one_primitive() {
+    // Exponentially spaced along x: SAH and spatial splits peel a few primitives at a time.
+    let tris: Vec<Triangle> = (0..5000).map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3)).collect();
+    let spatial = TopDown { split: SplitPoint::SpatialMedian, ..TopDown::sah() };
+    for cfg in [TopDown::sah(), TopDown::sah_sweep(), spatial] {
+        let (nodes, idx, depth) = build::<Aabb, _>(&cfg.with_max_leaf_size(1), &tris).unwrap();
+        let t = open(&nodes, &idx, &tris);
+        assert!(depth <= bvhkit::MAX_DEPTH);
+        assert_eq!(t.primitive_count(), tris.len());
+    }
+}
+
+/// Zero-area triangles, points and segments build and query correctly.
+#[test]
+fn degenerate_primitives_build_and_query() {
+    let mut a = Vec::new();
+    for i in 0..30 {
+        let o = Vec3::new(i as f32 * 0.5, (i % 3) as f32, 0.0);
+        a.push(Triangle::new(o, o, o)); // point
+        a.push(Triangle::new(o, o + Vec3::X, o)); // segment
+        a.push(Triangle::new(o, o + Vec3::X, o + Vec3::X * 2.0)); // collinear
+    }
+    let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::new(0.25, 0.0, 0.0))).collect();
+    let want = brute(&a, &b);
+    assert!(!want.is_empty());
+    for cfg in all_configs() {
+        assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger), want, "{cfg:?}");
+        assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, Descent::Simultaneous), want, "{cfg:?}");
+    }
+}
+
+/// n = 0 is an error; n = 1, 2 work for every builder and query.
+#[test]
+fn empty_single_and_two_primitive_inputs() {
+    let none: [Triangle; 0] = [];
+    let mut nodes = [Node::<Aabb>::EMPTY; 1];
+    let mut idx = [0u32; 1];
+    assert_eq!(TopDown::sah().build(&none, &mut nodes, &mut idx).unwrap_err(), Error::EmptyInput);
+    for n in 1..=3 {
+        let a: Vec<_> = (0..n).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
+        for cfg in all_configs() {
+            assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &a, Descent::Larger), brute(&a, &a));
+            assert_eq!(pairs_sorted::<Obb>(&cfg, &a, &a, Descent::AFirst), brute(&a, &a));
+        }
+    }
+}
+
+/// Tiny trees (1, 2, 3 leaves each side), far apart and touching.
+#[test]
+fn tiny_trees_far_apart_and_touching() {
+    for na in 1..=3 {
+        for nb in 1..=3 {
+            for gap in [100.0f32, 1.0, 0.5, 0.0] {
+                let a: Vec<_> = (0..na).map(|i| tri_at(Vec3::new(i as f32, 0.0, 0.0), 1.0)).collect();
+                let b: Vec<_> = (0..nb).map(|i| tri_at(Vec3::new(i as f32, gap, 0.0), 1.0)).collect();
+                let want = brute(&a, &b);
+                if gap == 100.0 {
+                    assert!(want.is_empty());
+                }
+                if gap == 0.5 {
+                    assert!(!want.is_empty());
+                }
+                let cfg = TopDown::sah().with_max_leaf_size(1);
+                for rule in Descent::ALL {
+                    assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, rule), want);
+                    assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, rule), want);
+                    assert_eq!(pairs_sorted::<Dop14>(&cfg, &a, &b, rule), want);
+                }
+            }
+        }
+    }
+}
+
+/// NaN/inf input is rejected up front with an error naming the primitive.
+#[test]
+fn nan_and_infinity_are_rejected_naming_the_primitive() {
+    let mut nodes = vec![Node::<Aabb>::EMPTY; 20];
+    let mut idx = vec![0u32; 10];
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        for pos in [0usize, 3, 9] {
+            for corner in 0..3 {
+                let mut tris: Vec<_> = (0..10).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
+                tris[pos].v[corner].y = bad;
+                let err = TopDown::sah().build(&tris, &mut nodes, &mut idx).unwrap_err();
+                assert_eq!(err, Error::NonFiniteCoordinate { primitive: pos });
+                assert!(err.to_string().contains(&format!("primitive {pos}")));
+            }
+        }
+    }
+}
+
+/// Finite coordinates up to 1e30 build and query exactly; beyond the limit is an error.
+#[test]
+fn huge_finite_coordinates_work_and_beyond_the_limit_is_an_error() {
+    for scale in [1e19f32, 1e25, 1e30] {
+        let a: Vec<_> = (0..50).map(|i| tri_at(Vec3::new(i as f32, (i % 5) as f32, 0.0) * scale * 1e-2 + Vec3::splat(scale), scale * 1e-2)).collect();
+        let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::splat(scale * 3e-3))).collect();
+        let want = brute(&a, &b);
+        assert!(!want.is_empty(), "scale {scale}");
+        for cfg in [TopDown::sah(), TopDown::sah_sweep(), TopDown::median()] {
+            assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger), want);
+            assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, Descent::Larger), want);
+            assert_eq!(pairs_sorted::<Obb>(&cfg, &a, &b, Descent::Larger), want);
+            assert_eq!(pairs_sorted::<Dop14>(&cfg, &a, &b, Descent::Larger), want);
+        }
+    }
+    let tris = [tri_at(Vec3::splat(2e32), 1.0)];
+    let mut nodes = [Node::<Aabb>::EMPTY; 1];
+    let mut idx = [0u32; 1];
+    assert_eq!(
+        TopDown::sah().build(&tris, &mut nodes, &mut idx).unwrap_err(),
+        Error::CoordinateOutOfRange { primitive: 0 }
+    );
+}
+
+/// Coplanar and flat (zero-thickness) scenes along each axis.
+#[test]
+fn flat_scenes_along_each_axis() {
+    for axis in 0..3 {
+        let flatten = |mut t: Triangle| {
+            for v in &mut t.v {
+                v[axis] = 3.0;
+            }
+            t
+        };
+        let a: Vec<_> = (0..60).map(|i| flatten(tri_at(Vec3::new((i % 8) as f32, (i / 8) as f32, (i % 5) as f32), 1.1))).collect();
+        let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::splat(0.3))).map(flatten).collect();
+        let want = brute(&a, &b);
+        assert!(!want.is_empty());
+        for cfg in all_configs() {
+            assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger), want, "{cfg:?}");
+        }
+        for cfg in [TopDown::sah(), TopDown::median()] {
+            assert_eq!(pairs_sorted::<Obb>(&cfg, &a, &b, Descent::Larger), want);
+            assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, Descent::Larger), want);
+        }
+    }
+}
+
+/// Identical centroids (all primitives in one bin): the builder terminates
+/// with a forced split or a leaf, as configured.
+#[test]
+fn identical_centroids_terminate() {
+    let a = vec![tri_at(Vec3::ONE, 1.0); 300];
+    for on_failure in [OnFailure::ForceSplit, OnFailure::Leaf] {
+        for base in all_configs() {
+            let cfg = TopDown { on_failure, ..base };
+            let (nodes, idx, _) = build::<Aabb, _>(&cfg, &a).unwrap();
+            let t = open(&nodes, &idx, &a);
+            let s = t.stats();
+            match on_failure {
+                OnFailure::ForceSplit => assert!(s.max_leaf_size <= cfg.stop.max_leaf_size as usize),
+                OnFailure::Leaf => assert_eq!((s.leaves, s.max_leaf_size), (1, 300)),
+            }
+        }
+    }
+}
+
+/// Sorted, collinear input cannot make the tree deeper than the traversal
+/// stacks: the builder bounds the depth, and leaves grow instead.
+#[test]
+fn depth_is_bounded_for_adversarial_input() {
+    let tris: Vec<Triangle> = (0..5000).map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3)).collect();
+    for cfg in [TopDown::sah().with_max_leaf_size(1), TopDown { split: SplitPoint::SpatialMedian, ..TopDown::sah() }.with_max_leaf_size(1)] {
+        let (nodes, idx, depth) = build::<Aabb, _>(&cfg, &tris).unwrap();
+        assert!(depth <= bvhkit::MAX_DEPTH);
+        let t = open(&nodes, &idx, &tris);
+        let region = Aabb::new(Vec3::new(10.0, -1.0, -1.0), Vec3::new(100.0, 1.0, 1.0));
+        let mut got = Vec::new();
+        t.overlapping(&tris, &region, |i| got.push(i)).unwrap();
+        got.sort_unstable();
+        let mut want = Vec::new();
+        brute_force::overlapping(&tris, &region, |i| want.push(i));
+        assert_eq!(got, want);
+    }
+}
+
+/// Same input, same configuration: the same tree and the same pair order, bit for bit.
+#[test]
+fn builds_and_queries_are_deterministic() {
+    let a: Vec<_> = (0..400).map(|i| tri_at(Vec3::new((i * 37 % 101) as f32, (i * 11 % 29) as f32, (i % 7) as f32), 2.0)).collect();
+    for cfg in all_configs().into_iter().step_by(7) {
+        let (n1, i1, _) = build::<Sphere, _>(&cfg, &a).unwrap();
+        let (n2, i2, _) = build::<Sphere, _>(&cfg, &a).unwrap();
+        assert_eq!(i1, i2);
+        assert!(n1.iter().zip(&n2).all(|(x, y)| x.first == y.first && x.count == y.count && x.bv.center.to_array().map(f32::to_bits) == y.bv.center.to_array().map(f32::to_bits) && x.bv.radius.to_bits() == y.bv.radius.to_bits()));
+        let t1 = open(&n1, &i1, &a);
+        let mut p1 = Vec::new();
+        let mut p2 = Vec::new();
+        overlapping_pairs(&t1, &a, &t1, &a, Descent::Larger, |i, j| p1.push((i, j))).unwrap();
+        overlapping_pairs(&t1, &a, &t1, &a, Descent::Larger, |i, j| p2.push((i, j))).unwrap();
+        assert_eq!(p1, p2);
+    }
+}
+
+/// A query given the wrong primitive slice is an error, not an out-of-bounds panic.
+#[test]
+fn query_with_the_wrong_primitives_is_an_error() {
+    let a: Vec<_> = (0..10).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
+    let (nodes, idx, _) = build::<Aabb, _>(&TopDown::sah(), &a).unwrap();
+    let t = open(&nodes, &idx, &a);
+    let err = t.overlapping(&a[..5], &Aabb::new(Vec3::ZERO, Vec3::ONE), |_| {}).unwrap_err();
+    assert_eq!(err, Error::PrimitiveCountMismatch { tree: 10, given: 5 });
+    let mut seen = vec![0u32; 4];
+    assert!(Bvh::from_parts(&nodes, &idx, &a[..5], &mut seen).is_err());
+}
