@@ -1,0 +1,121 @@
+//! Every fit is conservative in f32 (all points inside), including far from the
+//! origin and on degenerate sets; Welzl's sphere is the minimal one; overlap
+//! tests never say "disjoint" for volumes that share a point.
+
+use bvhkit::glam::Vec3;
+use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, Sphere};
+use proptest::prelude::*;
+
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(128),
+        ..ProptestConfig::default()
+    }
+}
+
+/// Point sets: general, collinear, coplanar, one point, clustered; then moved far away.
+fn points() -> impl Strategy<Value = Vec<Vec3>> {
+    let p = || (-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0).prop_map(|(x, y, z)| Vec3::new(x, y, z));
+    let set = prop_oneof![
+        prop::collection::vec(p(), 1..40),
+        (p(), p(), prop::collection::vec(-3.0f32..3.0, 1..30)).prop_map(|(a, d, ts)| ts.iter().map(|&t| a + d * t).collect()),
+        (prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0), 1..30), -5.0f32..5.0).prop_map(|(xy, z)| xy.iter().map(|&(x, y)| Vec3::new(x, y, z)).collect()),
+        p().prop_map(|a| vec![a]),
+        (prop::collection::vec(p(), 1..30), p()).prop_map(|(v, far)| { let mut v: Vec<Vec3> = v.iter().map(|q| *q * 1e-3).collect(); v.push(far); v }),
+    ];
+    (set, prop_oneof![Just(0.0f32), Just(1.0e5), Just(-7.3e4), Just(3.0e2)]).prop_map(|(v, off)| v.into_iter().map(|q| q + Vec3::new(off, -off * 0.5, off * 0.25)).collect())
+}
+
+fn all_inside<B: BoundingVolume>(b: &B, pts: &[Vec3]) -> Result<(), TestCaseError> {
+    for (i, p) in pts.iter().enumerate() {
+        prop_assert!(b.contains_point(*p), "{} misses point {i} {p:?}: {b:?}", B::NAME);
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn every_fit_contains_its_points(pts in points()) {
+        all_inside(&Aabb::fit(pts.as_slice()), &pts)?;
+        all_inside(&Sphere::ritter(pts.as_slice()), &pts)?;
+        all_inside(&Sphere::ritter_refined(pts.as_slice(), 8), &pts)?;
+        all_inside(&Sphere::welzl(pts.as_slice()), &pts)?;
+        all_inside(&Obb::pca(pts.as_slice()), &pts)?;
+        all_inside(&Kdop::<3>::fit(pts.as_slice()), &pts)?;
+        all_inside(&Dop14::fit(pts.as_slice()), &pts)?;
+        all_inside(&Dop18::fit(pts.as_slice()), &pts)?;
+        all_inside(&Dop26::fit(pts.as_slice()), &pts)?;
+    }
+
+    /// Welzl is minimal: never larger than Ritter, and no sphere through any 2 or 3
+    /// of the points (brute force over small sets) that contains all is smaller.
+    #[test]
+    fn welzl_is_minimal(pts in prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0).prop_map(|(x, y, z)| Vec3::new(x, y, z)), 1..9)) {
+        let w = Sphere::welzl(pts.as_slice());
+        let r = Sphere::ritter(pts.as_slice());
+        let rr = Sphere::ritter_refined(pts.as_slice(), 8);
+        prop_assert!(w.radius <= r.radius * (1.0 + 1e-5) + 1e-6);
+        prop_assert!(w.radius <= rr.radius * (1.0 + 1e-5) + 1e-6);
+        // Lower bound: half the diameter of the set.
+        let mut diam: f32 = 0.0;
+        for a in &pts { for b in &pts { diam = diam.max(a.distance(*b)); } }
+        prop_assert!(w.radius >= diam * 0.5 * (1.0 - 1e-5));
+        // Brute force over 2-point diameter spheres that contain everything.
+        for a in &pts { for b in &pts {
+            let c = (*a + *b) * 0.5;
+            let rad = a.distance(*b) * 0.5;
+            if pts.iter().all(|p| p.distance(c) <= rad * (1.0 + 1e-6) + 1e-6) {
+                prop_assert!(w.radius <= rad * (1.0 + 1e-4) + 1e-5, "welzl {} > pair sphere {}", w.radius, rad);
+            }
+        }}
+    }
+
+    /// Merges contain both inputs; overlap tests agree with a shared point.
+    #[test]
+    fn merges_contain_and_overlaps_are_conservative(a in points(), b in points(), t in 0.0f32..1.0) {
+        fn check<B: BoundingVolume>(a: &[Vec3], b: &[Vec3], t: f32) -> Result<(), TestCaseError> {
+            let (x, y) = (B::fit(a), B::fit(b));
+            let m = x.merge(&y);
+            prop_assert!(m.contains(&x) && m.contains(&y), "{} merge", B::NAME);
+            // A point inside both volumes forces overlap: take a point of `a` and
+            // move `b` so that it contains it.
+            let p = a[0].lerp(a[a.len() - 1], t);
+            let shift = p - b[0];
+            let moved: Vec<Vec3> = b.iter().map(|q| *q + shift).collect();
+            let y2 = B::fit(moved.as_slice());
+            if x.contains_point(p) && y2.contains_point(p) {
+                prop_assert!(x.overlaps(&y2), "{} overlap missed", B::NAME);
+                prop_assert!(x.overlaps_aabb(&Aabb::from_point(p)), "{} box overlap missed", B::NAME);
+            }
+            Ok(())
+        }
+        check::<Aabb>(&a, &b, t)?;
+        check::<Sphere>(&a, &b, t)?;
+        check::<Obb>(&a, &b, t)?;
+        check::<Dop14>(&a, &b, t)?;
+        check::<Dop26>(&a, &b, t)?;
+    }
+}
+
+#[test]
+fn obb_falls_back_to_the_aabb_for_a_cube() {
+    // A cube's covariance is isotropic: PCA axes are arbitrary. The fit must not
+    // be worse than the axis-aligned box.
+    let mut pts = Vec::new();
+    for i in 0..8 {
+        pts.push(Aabb::new(Vec3::ZERO, Vec3::ONE).corner(i));
+    }
+    let obb = Obb::pca(pts.as_slice());
+    assert!(obb.volume() <= 1.0 + 1e-4, "{obb:?}");
+}
+
+#[test]
+fn kdop_is_tighter_than_its_box_on_a_diagonal_triangle() {
+    let tri = [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::new(1.0, 1.0, 1.0)];
+    let d = Dop26::fit(&tri);
+    let outside = Vec3::new(1.0, 0.0, 0.0); // inside the AABB, outside the hull
+    assert!(Aabb::fit(&tri).contains_point(outside));
+    assert!(!d.contains_point(outside));
+}
