@@ -1,1 +1,70 @@
-//! placeholder
+//! # bvhkit-std
+//!
+//! The std side of bvhkit: owned storage for trees ([`OwnedBvh`]), the built-in
+//! scenes ([`scene`]), timing helpers, and the `tour` behind the `bvhkit`
+//! command-line tool. The core crate never allocates; this crate is where
+//! `Vec`s, files and clocks live.
+
+pub mod scene;
+pub mod tour;
+
+use bvhkit::{BoundingVolume, Bvh, Error, Node, Primitive, TopDown};
+use std::time::{Duration, Instant};
+
+/// A tree with its storage in `Vec`s, sized exactly for the input.
+///
+/// ```
+/// use bvhkit::{Aabb, TopDown, Triangle};
+/// use bvhkit_std::OwnedBvh;
+/// let tris = bvhkit_std::scene::rock(2, 0x5eed);
+/// let tree = OwnedBvh::<Aabb>::build(&TopDown::default(), &tris)?;
+/// assert_eq!(tree.view().primitive_count(), tris.len());
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct OwnedBvh<B> {
+    nodes: Vec<Node<B>>,
+    indices: Vec<u32>,
+    depth: usize,
+}
+
+impl<B: BoundingVolume> OwnedBvh<B> {
+    /// Builds into freshly allocated storage, then trims it to what was used.
+    pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len()).max(1)];
+        let mut indices = vec![0u32; builder.index_capacity(prims.len())];
+        let (used, depth) = {
+            let t = builder.build(prims, &mut nodes, &mut indices)?;
+            (t.node_count(), t.depth())
+        };
+        nodes.truncate(used);
+        nodes.shrink_to_fit();
+        indices.truncate(prims.len());
+        indices.shrink_to_fit();
+        Ok(OwnedBvh {
+            nodes,
+            indices,
+            depth,
+        })
+    }
+
+    /// The tree as the core's borrowed view.
+    pub fn view(&self) -> Bvh<'_, B> {
+        Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth)
+    }
+}
+
+/// Runs `f` `runs` times and returns the median duration and the last result.
+pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> (Duration, R) {
+    let mut times = Vec::with_capacity(runs.max(1));
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        let r = f();
+        times.push(t.elapsed());
+        last = Some(r);
+    }
+    times.sort_unstable();
+    let r = last.unwrap_or_else(|| unreachable!("runs >= 1"));
+    (times[times.len() / 2], r)
+}

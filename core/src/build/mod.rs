@@ -6,8 +6,11 @@
 //! [`SplitPoint`], [`Stop`], and [`OnFailure`] for splits that do not separate
 //! anything. Bottom-up and insertion builders come with their own modules.
 
+mod presets;
 mod strategy;
 mod top_down;
+
+pub use presets::{Preset, PRESETS};
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
 pub use top_down::TopDown;

@@ -3,7 +3,7 @@
 use crate::tree::MAX_DEPTH;
 
 /// Most bins / candidate planes a split evaluation may use.
-pub const MAX_BINS: usize = 64;
+pub const MAX_BINS: usize = 32;
 
 /// What a split minimises. Costs are evaluated on the children's boxes
 /// (converted to the tree's volume type where the criterion measures volume),

@@ -645,7 +645,15 @@ fn plan<P: Primitive, B: BoundingVolume>(
     if let (SplitPoint::Bins(k), AxisChoice::BestOfXyz, Partition::SurfaceArea) =
         (split, axis, partition)
     {
-        return plan_binned_sah(prims, range, task, k as usize, norm);
+        // More bins than primitives cannot help; a bin array sized to the node
+        // keeps the fixed cost of the many small nodes near the leaves low.
+        let k = (k as usize).min(range.len().max(2));
+        return match k {
+            0..=4 => plan_binned_sah::<P, 4>(prims, range, task, k, norm),
+            5..=8 => plan_binned_sah::<P, 8>(prims, range, task, k, norm),
+            9..=16 => plan_binned_sah::<P, 16>(prims, range, task, k, norm),
+            _ => plan_binned_sah::<P, MAX_BINS>(prims, range, task, k, norm),
+        };
     }
     let dirs = directions(prims, range, task, bv, axis);
     let mut best: Option<(f32, Plan)> = None;
@@ -802,20 +810,21 @@ fn evaluate_bins<P: Primitive, B: BoundingVolume>(
 }
 
 /// The fast path: one pass bins every primitive along x, y and z at once.
-fn plan_binned_sah<P: Primitive>(
+fn plan_binned_sah<P: Primitive, const N: usize>(
     prims: &[P],
     range: &[u32],
     task: &Task,
     k: usize,
     norm: &Norm,
 ) -> Option<Plan> {
+    let k = k.min(N);
     let c = &task.centroids;
     let ext = c.extent();
     let mut scale = [0.0f32; 3];
     for a in 0..3 {
         scale[a] = if ext[a] > 0.0 { k as f32 / ext[a] } else { 0.0 };
     }
-    let mut bins = [[EMPTY_BIN; MAX_BINS]; 3];
+    let mut bins = [[EMPTY_BIN; N]; 3];
     for &i in range {
         let p = &prims[i as usize];
         let b = p.bounds();
@@ -831,7 +840,7 @@ fn plan_binned_sah<P: Primitive>(
         if scale[a] == 0.0 {
             continue;
         }
-        let mut right_cost = [0.0f32; MAX_BINS];
+        let mut right_cost = [0.0f32; N];
         let mut acc = EMPTY_BIN;
         for j in (1..k).rev() {
             acc.bounds = acc.bounds.union(&bins[j].bounds);

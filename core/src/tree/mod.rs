@@ -112,6 +112,19 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         }
     }
 
+    /// Views storage that a builder of this crate filled (for example kept in a
+    /// `Vec` by the std side), without re-checking it. `depth` is the depth the
+    /// builder reported. For storage from anywhere else (a file, user code) use
+    /// [`from_parts`](Self::from_parts), which validates: a query over
+    /// inconsistent raw parts may index out of bounds.
+    pub fn from_raw_parts(nodes: &'a [Node<B>], indices: &'a [u32], depth: usize) -> Self {
+        Bvh {
+            nodes,
+            indices,
+            depth: depth.min(u32::MAX as usize) as u32,
+        }
+    }
+
     /// Re-opens a tree from storage kept elsewhere (a file, a previous build),
     /// checking every invariant against `prims` first. `seen` is scratch of at
     /// least [`Bvh::seen_words`] entries.

@@ -1,0 +1,235 @@
+//! `bvhkit tour`: every top-down strategy and every bounding volume on the
+//! default scene, each checked against brute force.
+
+use crate::{median_time, scene, OwnedBvh};
+use bvhkit::build::PRESETS;
+use bvhkit::{
+    overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Obb, Primitive, Sphere,
+    TopDown, Triangle,
+};
+use serde::Serialize;
+use std::time::Instant;
+
+/// What the tour measured, printable as a table or as JSON.
+#[derive(Clone, Debug, Serialize)]
+pub struct TourReport {
+    /// The scene.
+    pub scene: SceneInfo,
+    /// One row per top-down strategy (AABB trees).
+    pub strategies: Vec<Row>,
+    /// One row per bounding volume (binned SAH trees).
+    pub volumes: Vec<Row>,
+    /// Queries whose answer equalled the brute-force reference.
+    pub verified: usize,
+    /// Queries run.
+    pub queries: usize,
+}
+
+/// The scene the tour ran on.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneInfo {
+    /// Name.
+    pub name: String,
+    /// Triangles in object A.
+    pub triangles_a: usize,
+    /// Triangles in object B.
+    pub triangles_b: usize,
+    /// Overlapping primitive pairs according to brute force.
+    pub reference_pairs: usize,
+    /// Time the brute-force reference took.
+    pub reference_ms: f64,
+}
+
+/// One measured configuration.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// Strategy name.
+    pub strategy: String,
+    /// Bounding volume name.
+    pub volume: String,
+    /// Median build time of tree A.
+    pub build_ms: f64,
+    /// SAH cost of tree A (C_t = C_i = 1, the volume type's own areas).
+    pub sah_cost: f64,
+    /// Depth of tree A.
+    pub depth: usize,
+    /// Mean leaf depth of tree A.
+    pub mean_leaf_depth: f64,
+    /// Nodes of tree A.
+    pub nodes: usize,
+    /// Bytes of node + index storage of tree A.
+    pub bytes: usize,
+    /// Median time of the A-vs-B pair query (descend the larger volume).
+    pub query_ms: f64,
+    /// Pairs the query found.
+    pub pairs: usize,
+    /// Whether the pairs equal the brute-force reference.
+    pub matches: bool,
+}
+
+/// The brute-force answer: every pair of A and B whose bounds overlap, sorted.
+///
+/// Only primitives whose bounds overlap the other object's bounding box can be
+/// in a pair, so the double loop runs over those: exact, and fast enough to
+/// serve as the reference on the default scene.
+pub fn reference_pairs(a: &[Triangle], b: &[Triangle]) -> Vec<(u32, u32)> {
+    let bounds = |t: &[Triangle]| t.iter().fold(Aabb::EMPTY, |acc, p| acc.union(&p.bounds()));
+    let (ba, bb) = (bounds(a), bounds(b));
+    let near_b: Vec<(u32, Aabb)> = a
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| Some((i as u32, t.bounds())).filter(|(_, x)| x.overlaps(&bb)))
+        .collect();
+    let near_a: Vec<(u32, Aabb)> = b
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| Some((i as u32, t.bounds())).filter(|(_, x)| x.overlaps(&ba)))
+        .collect();
+    let mut pairs = Vec::new();
+    for &(i, x) in &near_b {
+        for &(j, y) in &near_a {
+            if x.overlaps(&y) {
+                pairs.push((i, j));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn measure<B: BoundingVolume>(
+    name: &str,
+    builder: &TopDown,
+    a: &[Triangle],
+    b: &[Triangle],
+    reference: &[(u32, u32)],
+    runs: usize,
+) -> Result<Row, bvhkit::Error> {
+    let (build, tree_a) = median_time(runs, || OwnedBvh::<B>::build(builder, a));
+    let tree_a = tree_a?;
+    let tree_b = OwnedBvh::<B>::build(builder, b)?;
+    let (ta, tb) = (tree_a.view(), tree_b.view());
+    let mut pairs = Vec::with_capacity(reference.len());
+    let (query, found) = median_time(runs, || {
+        pairs.clear();
+        overlapping_pairs(&ta, a, &tb, b, Descent::Larger, |i, j| pairs.push((i, j)))
+    });
+    let found = found?;
+    pairs.sort_unstable();
+    let s = ta.stats();
+    Ok(Row {
+        strategy: name.to_string(),
+        volume: B::NAME.to_string(),
+        build_ms: ms(build),
+        sah_cost: s.sah_cost,
+        depth: s.max_depth,
+        mean_leaf_depth: s.mean_leaf_depth,
+        nodes: s.nodes,
+        bytes: s.bytes,
+        query_ms: ms(query),
+        pairs: found,
+        matches: pairs == reference,
+    })
+}
+
+/// Options of the tour.
+#[derive(Clone, Copy, Debug)]
+pub struct TourOptions {
+    /// Icosphere subdivisions of each rock (6 = 81 920 triangles).
+    pub subdivisions: u32,
+    /// Timed runs per measurement (the median is reported).
+    pub runs: usize,
+}
+
+impl Default for TourOptions {
+    fn default() -> Self {
+        TourOptions {
+            subdivisions: 6,
+            runs: 3,
+        }
+    }
+}
+
+/// Runs the tour; `progress` is told what is being measured.
+pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourReport, bvhkit::Error> {
+    let (a, b) = if opts.subdivisions == 6 {
+        scene::default_pair()
+    } else {
+        let a = scene::rock(opts.subdivisions, 1);
+        let b = scene::transformed(&scene::rock(opts.subdivisions, 2), 0.7, bvhkit::glam::Vec3::new(1.35, 0.2, 0.1));
+        (a, b)
+    };
+    progress("brute-force reference");
+    let t = Instant::now();
+    let reference = reference_pairs(&a, &b);
+    let reference_ms = ms(t.elapsed());
+    let mut strategies = Vec::new();
+    for p in PRESETS {
+        progress(p.name);
+        strategies.push(measure::<Aabb>(p.name, &p.builder, &a, &b, &reference, opts.runs)?);
+    }
+    let sah = TopDown::sah();
+    let mut volumes = Vec::new();
+    progress("volumes");
+    volumes.push(measure::<Aabb>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Sphere>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Obb>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Dop14>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Dop18>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Dop26>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    let rows = strategies.iter().chain(&volumes);
+    let queries = rows.clone().count();
+    let verified = rows.filter(|r| r.matches).count();
+    Ok(TourReport {
+        scene: SceneInfo {
+            name: format!("two overlapping rocks (icosphere, {} subdivisions)", opts.subdivisions),
+            triangles_a: a.len(),
+            triangles_b: b.len(),
+            reference_pairs: reference.len(),
+            reference_ms,
+        },
+        strategies,
+        volumes,
+        verified,
+        queries,
+    })
+}
+
+fn table(title: &str, rows: &[Row]) -> String {
+    let mut s = format!(
+        "\n{title}\n{:<17} {:<7} {:>9} {:>9} {:>6} {:>9} {:>11} {:>9} {:>9} {:>6}\n",
+        "strategy", "volume", "build ms", "SAH cost", "depth", "nodes", "bytes", "query ms", "pairs", "ok"
+    );
+    for r in rows {
+        s += &format!(
+            "{:<17} {:<7} {:>9.2} {:>9.2} {:>6} {:>9} {:>11} {:>9.2} {:>9} {:>6}\n",
+            r.strategy,
+            r.volume,
+            r.build_ms,
+            r.sah_cost,
+            r.depth,
+            r.nodes,
+            r.bytes,
+            r.query_ms,
+            r.pairs,
+            if r.matches { "yes" } else { "NO" }
+        );
+    }
+    s
+}
+
+/// The report as the human-readable text `bvhkit tour` prints.
+pub fn render(r: &TourReport) -> String {
+    let mut s = format!(
+        "scene: {}: {} + {} triangles, {} overlapping pairs (brute force: {:.0} ms)\n",
+        r.scene.name, r.scene.triangles_a, r.scene.triangles_b, r.scene.reference_pairs, r.scene.reference_ms
+    );
+    s += &table("Top-down strategies (AABB trees, A-vs-B query, descend the larger volume):", &r.strategies);
+    s += &table("Bounding volumes (binned SAH; SAH cost uses each volume's own areas):", &r.volumes);
+    s += &format!("\nverified: {}/{} queries match brute force\n", r.verified, r.queries);
+    s
+}
