@@ -1,7 +1,8 @@
 //! Primitives: what the leaves of a hierarchy hold.
 //!
-//! A builder only needs two things from a primitive: its axis-aligned bounds
-//! and a representative point (the centroid) to sort it by. Anything
+//! A builder only needs one thing from a primitive: its axis-aligned bounds.
+//! It sorts primitives by the centre of those bounds (the usual "centroid" of
+//! SAH builders), so a tree depends on nothing else. Anything
 //! implementing [`Primitive`] can be put in a tree: triangles, points, boxes,
 //! spheres, or your own types.
 
@@ -32,16 +33,11 @@ pub const MAX_COORDINATE: f32 = 1.0e32;
 /// }
 /// let s = Stick { a: Vec3::ZERO, b: Vec3::X, r: 0.5 };
 /// assert_eq!(s.bounds().min, Vec3::new(-0.5, -0.5, -0.5));
-/// assert_eq!(s.centroid(), Vec3::new(0.5, 0.0, 0.0));
+/// assert_eq!(s.bounds().center(), Vec3::new(0.5, 0.0, 0.0));
 /// ```
 pub trait Primitive {
     /// The smallest axis-aligned box containing the primitive.
     fn bounds(&self) -> Aabb;
-    /// The point builders sort by; the centre of the bounds unless overridden.
-    #[inline]
-    fn centroid(&self) -> Vec3 {
-        self.bounds().center()
-    }
     /// Whether every coordinate is finite. `f32::min` ignores NaN, so this must
     /// look at the raw data, not at [`bounds`](Self::bounds).
     fn is_finite(&self) -> bool;
@@ -100,10 +96,6 @@ impl Primitive for Vec3 {
     fn bounds(&self) -> Aabb {
         Aabb::from_point(*self)
     }
-    #[inline]
-    fn centroid(&self) -> Vec3 {
-        *self
-    }
     fn is_finite(&self) -> bool {
         Vec3::is_finite(*self)
     }
@@ -123,9 +115,6 @@ impl Primitive for Sphere {
     fn bounds(&self) -> Aabb {
         crate::BoundingVolume::aabb(self)
     }
-    fn centroid(&self) -> Vec3 {
-        self.center
-    }
     fn is_finite(&self) -> bool {
         self.center.is_finite() && self.radius.is_finite() && self.radius >= 0.0
     }
@@ -134,9 +123,6 @@ impl Primitive for Sphere {
 impl<P: Primitive> Primitive for &P {
     fn bounds(&self) -> Aabb {
         (**self).bounds()
-    }
-    fn centroid(&self) -> Vec3 {
-        (**self).centroid()
     }
     fn is_finite(&self) -> bool {
         (**self).is_finite()

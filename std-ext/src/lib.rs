@@ -29,12 +29,14 @@ pub struct OwnedBvh<B> {
 }
 
 impl<B: BoundingVolume> OwnedBvh<B> {
-    /// Builds into freshly allocated storage, then trims it to what was used.
+    /// Builds into freshly allocated storage (with the bounds cache of
+    /// [`TopDown::build_cached`]), then trims it to what was used.
     pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
         let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len()).max(1)];
         let mut indices = vec![0u32; builder.index_capacity(prims.len())];
+        let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; prims.len()];
         let (used, depth) = {
-            let t = builder.build(prims, &mut nodes, &mut indices)?;
+            let t = builder.build_cached(prims, &mut nodes, &mut indices, &mut cache)?;
             (t.node_count(), t.depth())
         };
         nodes.truncate(used);

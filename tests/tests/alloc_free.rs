@@ -74,9 +74,10 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         let mut ia = vec![0u32; cfg.index_capacity(a.len())];
         let mut ib = vec![0u32; cfg.index_capacity(b.len())];
         let mut out = vec![(0u32, 0u32); 100_000];
+        let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; a.len()];
         let mut hits = vec![0u32; 1000];
         let (trees, allocs) = count(|| {
-            let ta = cfg.build(&a, &mut na, &mut ia).unwrap();
+            let ta = cfg.build_cached(&a, &mut na, &mut ia, &mut cache).unwrap();
             let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
             (ta, tb)
         });

@@ -52,3 +52,24 @@ proptest! {
         check_against_brute_force::<Dop14>(&cfg, &a, &b, &region)?;
     }
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The cached build partitions copies of the bounds instead of indices; the
+    /// tree must be the same, node for node.
+    #[test]
+    fn cached_build_makes_the_same_tree(cfg in any_top_down(), a in scene(80)) {
+        use bvhkit::{build::PrimitiveRef, Node, Sphere};
+        let mut n1 = vec![Node::<Sphere>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut n2 = n1.clone();
+        let mut i1 = vec![0u32; cfg.index_capacity(a.len())];
+        let mut i2 = i1.clone();
+        let mut cache = vec![PrimitiveRef::EMPTY; a.len()];
+        let t1 = cfg.build(&a, &mut n1, &mut i1).unwrap();
+        let t2 = cfg.build_cached(&a, &mut n2, &mut i2, &mut cache).unwrap();
+        prop_assert_eq!(t1.nodes(), t2.nodes());
+        prop_assert_eq!(t1.indices(), t2.indices());
+        prop_assert_eq!(t1.depth(), t2.depth());
+    }
+}

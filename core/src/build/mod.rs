@@ -13,4 +13,4 @@ mod top_down;
 pub use presets::{Preset, PRESETS};
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
-pub use top_down::TopDown;
+pub use top_down::{PrimitiveRef, TopDown};

@@ -148,6 +148,15 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
         k
     }
 
+    /// One slab computation per box instead of eight corner projections.
+    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, _union: &Aabb) -> Self {
+        let mut k = Self::EMPTY;
+        for i in 0..boxes.len() {
+            k = k.merge(&Self::from_aabb(&boxes.aabb(i)));
+        }
+        k
+    }
+
     fn merge(&self, other: &Self) -> Self {
         let mut k = *self;
         for i in 0..K {

@@ -159,6 +159,17 @@ fn orthonormal(m: DMat3) -> [Vec3; 3] {
     [a.as_vec3(), b.as_vec3(), c.as_vec3()]
 }
 
+/// The centres of a box set, as points.
+struct Centers<'a, S: ?Sized>(&'a S);
+impl<S: super::BoxSet + ?Sized> PointSet for Centers<'_, S> {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    fn point(&self, i: usize) -> Vec3 {
+        self.0.aabb(i).center()
+    }
+}
+
 struct Points8([DVec3; 16], usize);
 impl PointSet for Points8 {
     fn len(&self) -> usize {
@@ -175,6 +186,56 @@ impl BoundingVolume for Obb {
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         Obb::pca(points)
+    }
+
+    /// PCA of the box centres, then each box's projected interval per axis
+    /// (`c.u +/- sum |u_k| e_k`): `n` boxes instead of `8n` corners.
+    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, union: &Aabb) -> Self {
+        let n = boxes.len();
+        if n == 0 {
+            return Obb::EMPTY;
+        }
+        let axes = Obb::pca_axes(&Centers(boxes));
+        let ax = axes.map(|a| a.as_dvec3());
+        let interval = |i: usize, center: DVec3| {
+            let b = boxes.aabb(i);
+            let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+            let c = (lo + hi) * 0.5 - center;
+            let e = (hi - lo) * 0.5;
+            ax.map(|u| (u.dot(c), u.abs().dot(e)))
+        };
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for i in 0..n {
+            let t = interval(i, DVec3::ZERO);
+            for k in 0..3 {
+                lo[k] = lo[k].min(t[k].0 - t[k].1);
+                hi[k] = hi[k].max(t[k].0 + t[k].1);
+            }
+        }
+        let mid = (lo + hi) * 0.5;
+        let center = (ax[0] * mid.x + ax[1] * mid.y + ax[2] * mid.z).as_vec3();
+        let mut e = DVec3::ZERO;
+        for i in 0..n {
+            let t = interval(i, center.as_dvec3());
+            for k in 0..3 {
+                e[k] = e[k].max(t[k].0.abs() + t[k].1);
+            }
+        }
+        let pad = 1.0 + 16.0 * f64::EPSILON;
+        let rotated = Obb {
+            center,
+            axes,
+            half_extents: Vec3::new(round::up(e.x * pad), round::up(e.y * pad), round::up(e.z * pad)),
+        };
+        let aligned = Obb::from_aabb(union);
+        if rotated.volume() < aligned.volume() * 0.999
+            || (aligned.volume() == 0.0 && rotated.surface_area() < aligned.surface_area())
+        {
+            rotated
+        } else {
+            aligned
+        }
     }
 
     fn from_aabb(aabb: &Aabb) -> Self {

@@ -296,6 +296,23 @@ impl Sphere {
     }
 }
 
+/// Ritter's growth step for a ball: the smallest sphere containing `s` and the ball.
+#[inline]
+fn grow_ball(s: &mut S64, c: DVec3, r: f64) {
+    let v = c - s.c;
+    let dist = v.length();
+    if dist + r <= s.r {
+        return;
+    }
+    if dist + s.r <= r || dist == 0.0 {
+        *s = S64 { c, r: r.max(s.r) };
+        return;
+    }
+    let new_r = (s.r + dist + r) * 0.5;
+    s.c += v * ((new_r - s.r) / dist);
+    s.r = new_r;
+}
+
 /// Ritter's growth step: move the centre towards `p` just enough to include it.
 #[inline]
 fn grow(s: &mut S64, p: DVec3) {
@@ -314,6 +331,70 @@ impl BoundingVolume for Sphere {
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         Sphere::ritter_refined(points, DEFAULT_REFINEMENTS)
+    }
+
+    /// Ritter over the boxes' circumscribed balls: `n` balls instead of `8n`
+    /// corners. A sphere containing every ball contains every box.
+    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, _union: &Aabb) -> Self {
+        let n = boxes.len();
+        if n == 0 {
+            return Sphere::EMPTY;
+        }
+        let ball = |i: usize| {
+            let b = boxes.aabb(i);
+            let c = d(b.min) * 0.5 + d(b.max) * 0.5;
+            (c, (d(b.max) - c).length())
+        };
+        let (mut lo, mut hi) = ([0usize; 3], [0usize; 3]);
+        for i in 1..n {
+            let c = ball(i).0;
+            for k in 0..3 {
+                if c[k] < ball(lo[k]).0[k] {
+                    lo[k] = i;
+                }
+                if c[k] > ball(hi[k]).0[k] {
+                    hi[k] = i;
+                }
+            }
+        }
+        let mut s = S64 { c: ball(0).0, r: ball(0).1 };
+        let mut widest = -1.0;
+        for k in 0..3 {
+            let (a, b) = (ball(lo[k]), ball(hi[k]));
+            let w = (a.0 - b.0).length() + a.1 + b.1;
+            if w > widest {
+                widest = w;
+                s = S64 { c: a.0, r: a.1 };
+                grow_ball(&mut s, b.0, b.1);
+            }
+        }
+        for i in 0..n {
+            let (c, r) = ball(i);
+            grow_ball(&mut s, c, r);
+        }
+        let mut best = s;
+        for it in 0..2 {
+            s.r *= 0.95;
+            let order = Shuffle::new(n, it + 1);
+            for i in 0..n {
+                let (c, r) = ball(order.at(i));
+                grow_ball(&mut s, c, r);
+            }
+            if s.r < best.r {
+                best = s;
+            }
+        }
+        let center = best.c.as_vec3();
+        let cd = d(center);
+        let mut radius: f64 = 0.0;
+        for i in 0..n {
+            let (c, r) = ball(i);
+            radius = radius.max((c - cd).length() + r);
+        }
+        Sphere {
+            center,
+            radius: round::up(radius * (1.0 + 16.0 * f64::EPSILON)),
+        }
     }
 
     fn from_aabb(aabb: &Aabb) -> Self {
