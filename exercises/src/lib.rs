@@ -1,1 +1,43 @@
-//! placeholder
+//! # bvhkit exercises
+//!
+//! Each exercise is a method of the [`Exercises`] trait. Your answers go in
+//! [`student.rs`](student) (they start as `todo!()`); the reference answers in
+//! [`reference`] use the library. The grader runs the same checks on either:
+//!
+//! ```text
+//! cargo run -p bvhkit-exercises --bin grade                # grades your answers
+//! cargo run -p bvhkit-exercises --bin grade -- --reference # grades the reference (100%)
+//! ```
+//!
+//! An exercise that panics (for example, still `todo!()`) scores 0 and the
+//! grader moves on.
+
+pub mod grader;
+pub mod reference;
+pub mod student;
+
+use bvhkit::glam::Vec3;
+use bvhkit::{Aabb, Sphere};
+
+/// The exercises, one method each. Statements and hints are in the book
+/// (chapter "Exercises") and on the stubs in [`student`].
+pub trait Exercises {
+    /// Exercise 1: do two axis-aligned boxes overlap? Touching counts.
+    fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool;
+
+    /// Exercise 2a: the smallest axis-aligned box around a non-empty point set.
+    fn aabb_fit(&self, points: &[Vec3]) -> Aabb;
+    /// Exercise 2b: the smallest axis-aligned box containing two boxes.
+    fn aabb_merge(&self, a: &Aabb, b: &Aabb) -> Aabb;
+    /// Exercise 2c: a sphere containing every point, at most 1.25x the radius
+    /// of the minimal sphere (Ritter's method is enough).
+    fn sphere_fit(&self, points: &[Vec3]) -> Sphere;
+    /// Exercise 2d: a sphere containing two spheres, as small as possible.
+    fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere;
+
+    /// Exercise 3: the object-median partition of a top-down builder.
+    /// Reorder `indices` (which index `centroids`) so that the first `n / 2`
+    /// are those with the smallest coordinate along the longest axis of the
+    /// centroids' bounding box, and return `n / 2`.
+    fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize;
+}

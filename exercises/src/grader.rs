@@ -1,0 +1,360 @@
+//! The grader: named checks with points, run on any [`Exercises`] implementation.
+//!
+//! Checks are chosen to reject the plausible wrong answers, not only to accept
+//! the right one: strict comparisons on touching boxes, a fit that starts from
+//! the origin, a sphere that misses a point by rounding, a partition along a
+//! fixed axis, and so on.
+
+use crate::Exercises;
+use bvhkit::glam::Vec3;
+use bvhkit::{Aabb, BoundingVolume, Sphere};
+use std::panic::{self, AssertUnwindSafe};
+
+/// One check: a name, its points, and the test.
+#[derive(Clone, Copy)]
+pub struct Check {
+    /// Exercise number it belongs to.
+    pub exercise: u32,
+    /// What it checks.
+    pub name: &'static str,
+    /// Points it is worth.
+    pub points: u32,
+    /// The test.
+    pub run: fn(&dyn Exercises) -> bool,
+}
+
+impl std::fmt::Debug for Check {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Check({} {})", self.exercise, self.name)
+    }
+}
+
+/// Titles of the exercises.
+pub const EXERCISES: [(u32, &str); 3] = [
+    (1, "AABB overlap"),
+    (2, "AABB and sphere: fit and merge"),
+    (3, "top-down partition: object median"),
+];
+
+/// A score for one exercise.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExerciseScore {
+    /// Exercise number.
+    pub exercise: u32,
+    /// Title.
+    pub title: &'static str,
+    /// Points earned.
+    pub earned: u32,
+    /// Points possible.
+    pub possible: u32,
+    /// Names of the checks that failed (or panicked).
+    pub failed: Vec<String>,
+}
+
+/// A small deterministic generator so every run grades the same inputs.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn point(&mut self, scale: f32, offset: Vec3) -> Vec3 {
+        Vec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * scale + offset
+    }
+    fn cloud(&mut self, n: usize, scale: f32, offset: Vec3) -> Vec<Vec3> {
+        (0..n).map(|_| self.point(scale, offset)).collect()
+    }
+}
+
+fn b(min: [f32; 3], max: [f32; 3]) -> Aabb {
+    Aabb::new(Vec3::from(min), Vec3::from(max))
+}
+
+fn clouds() -> Vec<Vec<Vec3>> {
+    let mut r = Rng(0x9e3779b97f4a7c15);
+    let mut v = vec![
+        vec![Vec3::new(-3.0, -2.0, -1.0), Vec3::new(-1.0, -5.0, -2.0)],
+        vec![Vec3::new(7.0, 7.0, 7.0)],
+    ];
+    for i in 0..20 {
+        let off = if i % 2 == 0 { Vec3::ZERO } else { Vec3::new(1.0e5, -3.0e4, 2.0e4) };
+        v.push(r.cloud(3 + i * 7, 10.0, off));
+    }
+    // Points on a sphere: Ritter is near its worst here.
+    v.push((0..200).map(|i| {
+        let (t, p) = (i as f32 * 0.7, i as f32 * 0.31);
+        Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()) * 3.0
+    }).collect());
+    v
+}
+
+/// All checks of all exercises.
+pub fn checks() -> Vec<Check> {
+    vec![
+        // Exercise 1
+        Check { exercise: 1, name: "overlapping boxes overlap", points: 2, run: |e| {
+            e.aabb_overlaps(&b([0.0; 3], [2.0; 3]), &b([1.0; 3], [3.0; 3]))
+                && e.aabb_overlaps(&b([1.0; 3], [3.0; 3]), &b([0.0; 3], [2.0; 3]))
+        }},
+        Check { exercise: 1, name: "boxes apart along one axis only do not overlap", points: 3, run: |e| {
+            (0..3).all(|k| {
+                let mut lo = [0.0; 3];
+                lo[k] = 5.0;
+                let hi = lo.map(|x| x + 1.0);
+                !e.aabb_overlaps(&b([0.0; 3], [1.0; 3]), &b(lo, hi)) && !e.aabb_overlaps(&b(lo, hi), &b([0.0; 3], [1.0; 3]))
+            })
+        }},
+        Check { exercise: 1, name: "touching faces, edges and corners overlap", points: 2, run: |e| {
+            let a = b([0.0; 3], [1.0; 3]);
+            e.aabb_overlaps(&a, &b([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]))
+                && e.aabb_overlaps(&a, &b([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
+                && e.aabb_overlaps(&a, &b([1.0; 3], [2.0; 3]))
+                && e.aabb_overlaps(&a, &b([0.5, 0.5, 1.0], [0.5, 0.5, 1.0]))
+        }},
+        Check { exercise: 1, name: "a box inside another overlaps it", points: 1, run: |e| {
+            e.aabb_overlaps(&b([0.0; 3], [10.0; 3]), &b([4.0; 3], [5.0; 3]))
+                && e.aabb_overlaps(&b([4.0; 3], [5.0; 3]), &b([0.0; 3], [10.0; 3]))
+        }},
+        Check { exercise: 1, name: "500 random pairs", points: 2, run: |e| {
+            let mut r = Rng(42);
+            (0..500).all(|_| {
+                let (p, q) = (r.point(4.0, Vec3::ZERO), r.point(4.0, Vec3::ZERO));
+                let (s, t) = (r.point(2.0, Vec3::ONE), r.point(2.0, Vec3::ONE));
+                let x = Aabb::new(p.min(q), p.max(q));
+                let y = Aabb::new(s.min(t), s.max(t));
+                let truth = (0..3).all(|k| x.min[k] <= y.max[k] && y.min[k] <= x.max[k]);
+                e.aabb_overlaps(&x, &y) == truth
+            })
+        }},
+        // Exercise 2
+        Check { exercise: 2, name: "aabb_fit is exact (also for negative coordinates)", points: 4, run: |e| {
+            clouds().iter().all(|c| e.aabb_fit(c) == Aabb::fit(c.as_slice()))
+        }},
+        Check { exercise: 2, name: "aabb_fit of one point is that point", points: 1, run: |e| {
+            let p = Vec3::new(-1.0, 2.0, -3.0);
+            e.aabb_fit(&[p]) == Aabb::from_point(p)
+        }},
+        Check { exercise: 2, name: "aabb_merge is exact (disjoint, overlapping, nested)", points: 3, run: |e| {
+            let cases = [
+                (b([0.0; 3], [1.0; 3]), b([5.0; 3], [6.0; 3])),
+                (b([-2.0, 0.0, 0.0], [1.0; 3]), b([0.0, -3.0, 0.5], [0.5, 4.0, 9.0])),
+                (b([0.0; 3], [10.0; 3]), b([4.0; 3], [5.0; 3])),
+            ];
+            cases.iter().all(|(x, y)| e.aabb_merge(x, y) == x.union(y) && e.aabb_merge(y, x) == x.union(y))
+        }},
+        Check { exercise: 2, name: "sphere_fit contains every point (near and far from the origin)", points: 4, run: |e| {
+            clouds().iter().all(|c| {
+                let s = e.sphere_fit(c);
+                c.iter().all(|&p| s.contains_point(p))
+            })
+        }},
+        Check { exercise: 2, name: "sphere_fit is within 1.25x of the minimal radius", points: 3, run: |e| {
+            clouds().iter().all(|c| {
+                let s = e.sphere_fit(c);
+                let w = Sphere::welzl(c.as_slice());
+                s.radius <= w.radius * 1.25 + 1e-3
+            })
+        }},
+        Check { exercise: 2, name: "sphere_merge contains both spheres", points: 3, run: |e| {
+            let mut r = Rng(7);
+            (0..200).all(|_| {
+                let x = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                let y = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                let m = e.sphere_merge(&x, &y);
+                m.contains(&x) && m.contains(&y)
+            })
+        }},
+        Check { exercise: 2, name: "sphere_merge is minimal (and returns a containing input as is)", points: 2, run: |e| {
+            let mut r = Rng(8);
+            let nested = Sphere::new(Vec3::ZERO, 5.0);
+            let inner = Sphere::new(Vec3::ONE, 1.0);
+            (e.sphere_merge(&nested, &inner).radius - 5.0).abs() < 1e-4
+                && (0..200).all(|_| {
+                    let x = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                    let y = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                    let best = x.merge(&y).radius;
+                    e.sphere_merge(&x, &y).radius <= best * (1.0 + 1e-4) + 1e-5
+                })
+        }},
+        // Exercise 3
+        Check { exercise: 3, name: "returns n / 2", points: 2, run: |e| {
+            let mut r = Rng(3);
+            (1..40).all(|n| {
+                let c = r.cloud(n, 10.0, Vec3::ZERO);
+                let mut idx: Vec<u32> = (0..n as u32).collect();
+                e.median_partition(&c, &mut idx) == n / 2
+            })
+        }},
+        Check { exercise: 3, name: "indices stay a permutation", points: 2, run: |e| {
+            let mut r = Rng(4);
+            let c = r.cloud(101, 10.0, Vec3::ZERO);
+            let mut idx: Vec<u32> = (0..101).rev().collect();
+            e.median_partition(&c, &mut idx);
+            idx.sort_unstable();
+            idx == (0..101).collect::<Vec<u32>>()
+        }},
+        Check { exercise: 3, name: "left half <= right half along the longest axis (y here)", points: 3, run: |e| {
+            median_ok(e, Vec3::new(1.0, 20.0, 3.0), 5)
+        }},
+        Check { exercise: 3, name: "the axis comes from the centroids (z here), not fixed", points: 3, run: |e| {
+            median_ok(e, Vec3::new(2.0, 1.0, 30.0), 6) && median_ok(e, Vec3::new(40.0, 1.0, 3.0), 9)
+        }},
+    ]
+}
+
+fn median_ok(e: &dyn Exercises, stretch: Vec3, seed: u64) -> bool {
+    let mut r = Rng(seed);
+    let c: Vec<Vec3> = r.cloud(77, 1.0, Vec3::ZERO).iter().map(|p| *p * stretch).collect();
+    let axis = Aabb::fit(c.as_slice()).longest_axis();
+    let mut idx: Vec<u32> = (0..77).collect();
+    let mid = e.median_partition(&c, &mut idx);
+    if mid != 38 {
+        return false;
+    }
+    let left = idx[..mid].iter().map(|&i| c[i as usize][axis]).fold(f32::NEG_INFINITY, f32::max);
+    let right = idx[mid..].iter().map(|&i| c[i as usize][axis]).fold(f32::INFINITY, f32::min);
+    left <= right
+}
+
+/// Runs every check on `e`; a panicking check scores 0.
+pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
+    let hook = panic::take_hook();
+    panic::set_hook(Box::new(|_| {}));
+    let mut scores: Vec<ExerciseScore> = EXERCISES
+        .iter()
+        .map(|&(exercise, title)| ExerciseScore { exercise, title, earned: 0, possible: 0, failed: vec![] })
+        .collect();
+    for c in checks() {
+        let s = &mut scores[(c.exercise - 1) as usize];
+        s.possible += c.points;
+        match panic::catch_unwind(AssertUnwindSafe(|| (c.run)(e))) {
+            Ok(true) => s.earned += c.points,
+            Ok(false) => s.failed.push(c.name.to_string()),
+            Err(p) => {
+                let msg = p
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                s.failed.push(format!("{} (panicked: {msg})", c.name));
+            }
+        }
+    }
+    panic::set_hook(hook);
+    scores
+}
+
+/// The table the `grade` command prints; the last line is `total: E/P points (X%)`.
+pub fn report(scores: &[ExerciseScore]) -> String {
+    let mut s = format!("{:<4} {:<40} {:>8}\n", "#", "exercise", "points");
+    for x in scores {
+        s += &format!("{:<4} {:<40} {:>8}\n", x.exercise, x.title, format!("{}/{}", x.earned, x.possible));
+        for f in &x.failed {
+            s += &format!("       - failed: {f}\n");
+        }
+    }
+    let (e, p): (u32, u32) = scores.iter().fold((0, 0), |(e, p), x| (e + x.earned, p + x.possible));
+    s += &format!("total: {e}/{p} points ({}%)\n", if p == 0 { 0 } else { e * 100 / p });
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::Reference;
+    use crate::student::Student;
+
+    fn earned(e: &dyn Exercises, exercise: u32) -> (u32, u32) {
+        let s = &grade(e)[(exercise - 1) as usize];
+        (s.earned, s.possible)
+    }
+
+    #[test]
+    fn reference_scores_everything() {
+        for s in grade(&Reference) {
+            assert_eq!(s.earned, s.possible, "{s:?}");
+        }
+        assert!(report(&grade(&Reference)).ends_with("total: 40/40 points (100%)\n"));
+    }
+
+    /// Plausible wrong answers, each delegating everything else to the reference.
+    struct Wrong(u32);
+    impl Exercises for Wrong {
+        fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
+            match self.0 {
+                1 => (0..3).all(|k| a.min[k] < b.max[k] && b.min[k] < a.max[k]), // strict
+                2 => (0..3).any(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k]), // any axis
+                _ => Reference.aabb_overlaps(a, b),
+            }
+        }
+        fn aabb_fit(&self, points: &[Vec3]) -> Aabb {
+            match self.0 {
+                3 => points.iter().fold(Aabb::new(Vec3::ZERO, Vec3::ZERO), |b, p| Aabb::new(b.min.min(*p), b.max.max(*p))),
+                _ => Reference.aabb_fit(points),
+            }
+        }
+        fn aabb_merge(&self, a: &Aabb, b: &Aabb) -> Aabb {
+            Reference.aabb_merge(a, b)
+        }
+        fn sphere_fit(&self, points: &[Vec3]) -> Sphere {
+            match self.0 {
+                // Ritter without any rounding care: f32 arithmetic throughout.
+                4 => {
+                    let mut c = points[0];
+                    let mut r = 0.0f32;
+                    for &p in points {
+                        let d = (p - c).length();
+                        if d > r {
+                            let nr = (r + d) * 0.5;
+                            c += (p - c) * ((nr - r) / d);
+                            r = nr;
+                        }
+                    }
+                    Sphere::new(c, r)
+                }
+                // The box's circumsphere: always contains, often too large.
+                5 => BoundingVolume::from_aabb(&Aabb::fit(points)),
+                _ => Reference.sphere_fit(points),
+            }
+        }
+        fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere {
+            match self.0 {
+                6 => Sphere::new((a.center + b.center) * 0.5, a.center.distance(b.center) * 0.5 + a.radius.max(b.radius)),
+                _ => Reference.sphere_merge(a, b),
+            }
+        }
+        fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
+            match self.0 {
+                7 => {
+                    let mid = indices.len() / 2;
+                    indices.sort_unstable_by(|&a, &b| centroids[a as usize].x.total_cmp(&centroids[b as usize].x));
+                    mid
+                }
+                8 => indices.len() / 2, // no reordering at all
+                _ => Reference.median_partition(centroids, indices),
+            }
+        }
+    }
+
+    #[test]
+    fn plausible_wrong_answers_lose_points() {
+        for (wrong, exercise) in [(1, 1), (2, 1), (3, 2), (4, 2), (5, 2), (6, 2), (7, 3), (8, 3)] {
+            let (e, p) = earned(&Wrong(wrong), exercise);
+            assert!(e < p, "wrong answer {wrong} got full marks on exercise {exercise}");
+        }
+    }
+
+    #[test]
+    fn untouched_stubs_score_zero_without_stopping_the_grader() {
+        // Meaningful only while the stubs are untouched; students who start
+        // filling them in will see this test fail, which is the point.
+        if std::env::var_os("BVHKIT_STUDENT").is_some() {
+            return;
+        }
+        let scores = grade(&Student);
+        assert_eq!(scores.len(), 3);
+        assert!(scores.iter().all(|s| s.earned == 0 && s.possible > 0));
+    }
+}
