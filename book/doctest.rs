@@ -39,9 +39,16 @@ mod tests {
     fn summary_and_doctests_list_the_same_chapters() {
         let summary = include_str!("src/SUMMARY.md");
         for file in super::CHAPTERS {
-            assert!(summary.contains(&format!("({file})")), "{file} missing from SUMMARY.md");
+            assert!(
+                summary.contains(&format!("({file})")),
+                "{file} missing from SUMMARY.md"
+            );
         }
         let linked = summary.matches(".md)").count();
-        assert_eq!(linked, super::CHAPTERS.len(), "SUMMARY.md links a chapter the doctest crate does not include");
+        assert_eq!(
+            linked,
+            super::CHAPTERS.len(),
+            "SUMMARY.md links a chapter the doctest crate does not include"
+        );
     }
 }

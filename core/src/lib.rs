@@ -50,7 +50,9 @@ mod stats;
 pub mod tree;
 
 pub use build::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
-pub use bv::{symmetric_eigen, Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, PointSet, Sphere};
+pub use bv::{
+    symmetric_eigen, Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, PointSet, Sphere,
+};
 pub use error::Error;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{brute_force, overlapping_pairs, Collector, Descent};

@@ -67,7 +67,10 @@ impl Triangle {
 
     /// Area (zero for degenerate triangles).
     pub fn area(&self) -> f32 {
-        (self.v[1] - self.v[0]).cross(self.v[2] - self.v[0]).length() * 0.5
+        (self.v[1] - self.v[0])
+            .cross(self.v[2] - self.v[0])
+            .length()
+            * 0.5
     }
 
     /// The triangle moved by `offset`.

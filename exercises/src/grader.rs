@@ -79,14 +79,22 @@ fn clouds() -> Vec<Vec<Vec3>> {
         vec![Vec3::new(7.0, 7.0, 7.0)],
     ];
     for i in 0..20 {
-        let off = if i % 2 == 0 { Vec3::ZERO } else { Vec3::new(1.0e5, -3.0e4, 2.0e4) };
+        let off = if i % 2 == 0 {
+            Vec3::ZERO
+        } else {
+            Vec3::new(1.0e5, -3.0e4, 2.0e4)
+        };
         v.push(r.cloud(3 + i * 7, 10.0, off));
     }
     // Points on a sphere: Ritter is near its worst here.
-    v.push((0..200).map(|i| {
-        let (t, p) = (i as f32 * 0.7, i as f32 * 0.31);
-        Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()) * 3.0
-    }).collect());
+    v.push(
+        (0..200)
+            .map(|i| {
+                let (t, p) = (i as f32 * 0.7, i as f32 * 0.31);
+                Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()) * 3.0
+            })
+            .collect(),
+    );
     v
 }
 
@@ -94,127 +102,224 @@ fn clouds() -> Vec<Vec<Vec3>> {
 pub fn checks() -> Vec<Check> {
     vec![
         // Exercise 1
-        Check { exercise: 1, name: "overlapping boxes overlap", points: 2, run: |e| {
-            e.aabb_overlaps(&b([0.0; 3], [2.0; 3]), &b([1.0; 3], [3.0; 3]))
-                && e.aabb_overlaps(&b([1.0; 3], [3.0; 3]), &b([0.0; 3], [2.0; 3]))
-        }},
-        Check { exercise: 1, name: "boxes apart along one axis only do not overlap", points: 3, run: |e| {
-            (0..3).all(|k| {
-                let mut lo = [0.0; 3];
-                lo[k] = 5.0;
-                let hi = lo.map(|x| x + 1.0);
-                !e.aabb_overlaps(&b([0.0; 3], [1.0; 3]), &b(lo, hi)) && !e.aabb_overlaps(&b(lo, hi), &b([0.0; 3], [1.0; 3]))
-            })
-        }},
-        Check { exercise: 1, name: "touching faces, edges and corners overlap", points: 2, run: |e| {
-            let a = b([0.0; 3], [1.0; 3]);
-            e.aabb_overlaps(&a, &b([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]))
-                && e.aabb_overlaps(&a, &b([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
-                && e.aabb_overlaps(&a, &b([1.0; 3], [2.0; 3]))
-                && e.aabb_overlaps(&a, &b([0.5, 0.5, 1.0], [0.5, 0.5, 1.0]))
-        }},
-        Check { exercise: 1, name: "a box inside another overlaps it", points: 1, run: |e| {
-            e.aabb_overlaps(&b([0.0; 3], [10.0; 3]), &b([4.0; 3], [5.0; 3]))
-                && e.aabb_overlaps(&b([4.0; 3], [5.0; 3]), &b([0.0; 3], [10.0; 3]))
-        }},
-        Check { exercise: 1, name: "500 random pairs", points: 2, run: |e| {
-            let mut r = Rng(42);
-            (0..500).all(|_| {
-                let (p, q) = (r.point(4.0, Vec3::ZERO), r.point(4.0, Vec3::ZERO));
-                let (s, t) = (r.point(2.0, Vec3::ONE), r.point(2.0, Vec3::ONE));
-                let x = Aabb::new(p.min(q), p.max(q));
-                let y = Aabb::new(s.min(t), s.max(t));
-                let truth = (0..3).all(|k| x.min[k] <= y.max[k] && y.min[k] <= x.max[k]);
-                e.aabb_overlaps(&x, &y) == truth
-            })
-        }},
+        Check {
+            exercise: 1,
+            name: "overlapping boxes overlap",
+            points: 2,
+            run: |e| {
+                e.aabb_overlaps(&b([0.0; 3], [2.0; 3]), &b([1.0; 3], [3.0; 3]))
+                    && e.aabb_overlaps(&b([1.0; 3], [3.0; 3]), &b([0.0; 3], [2.0; 3]))
+            },
+        },
+        Check {
+            exercise: 1,
+            name: "boxes apart along one axis only do not overlap",
+            points: 3,
+            run: |e| {
+                (0..3).all(|k| {
+                    let mut lo = [0.0; 3];
+                    lo[k] = 5.0;
+                    let hi = lo.map(|x| x + 1.0);
+                    !e.aabb_overlaps(&b([0.0; 3], [1.0; 3]), &b(lo, hi))
+                        && !e.aabb_overlaps(&b(lo, hi), &b([0.0; 3], [1.0; 3]))
+                })
+            },
+        },
+        Check {
+            exercise: 1,
+            name: "touching faces, edges and corners overlap",
+            points: 2,
+            run: |e| {
+                let a = b([0.0; 3], [1.0; 3]);
+                e.aabb_overlaps(&a, &b([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]))
+                    && e.aabb_overlaps(&a, &b([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
+                    && e.aabb_overlaps(&a, &b([1.0; 3], [2.0; 3]))
+                    && e.aabb_overlaps(&a, &b([0.5, 0.5, 1.0], [0.5, 0.5, 1.0]))
+            },
+        },
+        Check {
+            exercise: 1,
+            name: "a box inside another overlaps it",
+            points: 1,
+            run: |e| {
+                e.aabb_overlaps(&b([0.0; 3], [10.0; 3]), &b([4.0; 3], [5.0; 3]))
+                    && e.aabb_overlaps(&b([4.0; 3], [5.0; 3]), &b([0.0; 3], [10.0; 3]))
+            },
+        },
+        Check {
+            exercise: 1,
+            name: "500 random pairs",
+            points: 2,
+            run: |e| {
+                let mut r = Rng(42);
+                (0..500).all(|_| {
+                    let (p, q) = (r.point(4.0, Vec3::ZERO), r.point(4.0, Vec3::ZERO));
+                    let (s, t) = (r.point(2.0, Vec3::ONE), r.point(2.0, Vec3::ONE));
+                    let x = Aabb::new(p.min(q), p.max(q));
+                    let y = Aabb::new(s.min(t), s.max(t));
+                    let truth = (0..3).all(|k| x.min[k] <= y.max[k] && y.min[k] <= x.max[k]);
+                    e.aabb_overlaps(&x, &y) == truth
+                })
+            },
+        },
         // Exercise 2
-        Check { exercise: 2, name: "aabb_fit is exact (also for negative coordinates)", points: 4, run: |e| {
-            clouds().iter().all(|c| e.aabb_fit(c) == Aabb::fit(c.as_slice()))
-        }},
-        Check { exercise: 2, name: "aabb_fit of one point is that point", points: 1, run: |e| {
-            let p = Vec3::new(-1.0, 2.0, -3.0);
-            e.aabb_fit(&[p]) == Aabb::from_point(p)
-        }},
-        Check { exercise: 2, name: "aabb_merge is exact (disjoint, overlapping, nested)", points: 3, run: |e| {
-            let cases = [
-                (b([0.0; 3], [1.0; 3]), b([5.0; 3], [6.0; 3])),
-                (b([-2.0, 0.0, 0.0], [1.0; 3]), b([0.0, -3.0, 0.5], [0.5, 4.0, 9.0])),
-                (b([0.0; 3], [10.0; 3]), b([4.0; 3], [5.0; 3])),
-            ];
-            cases.iter().all(|(x, y)| e.aabb_merge(x, y) == x.union(y) && e.aabb_merge(y, x) == x.union(y))
-        }},
-        Check { exercise: 2, name: "sphere_fit contains every point (near and far from the origin)", points: 4, run: |e| {
-            clouds().iter().all(|c| {
-                let s = e.sphere_fit(c);
-                c.iter().all(|&p| s.contains_point(p))
-            })
-        }},
-        Check { exercise: 2, name: "sphere_fit is within 1.25x of the minimal radius", points: 3, run: |e| {
-            clouds().iter().all(|c| {
-                let s = e.sphere_fit(c);
-                let w = Sphere::welzl(c.as_slice());
-                s.radius <= w.radius * 1.25 + 1e-3
-            })
-        }},
-        Check { exercise: 2, name: "sphere_merge contains both spheres", points: 3, run: |e| {
-            let mut r = Rng(7);
-            (0..200).all(|_| {
-                let x = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
-                let y = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
-                let m = e.sphere_merge(&x, &y);
-                m.contains(&x) && m.contains(&y)
-            })
-        }},
-        Check { exercise: 2, name: "sphere_merge is minimal (and returns a containing input as is)", points: 2, run: |e| {
-            let mut r = Rng(8);
-            let nested = Sphere::new(Vec3::ZERO, 5.0);
-            let inner = Sphere::new(Vec3::ONE, 1.0);
-            (e.sphere_merge(&nested, &inner).radius - 5.0).abs() < 1e-4
-                && (0..200).all(|_| {
+        Check {
+            exercise: 2,
+            name: "aabb_fit is exact (also for negative coordinates)",
+            points: 4,
+            run: |e| {
+                clouds()
+                    .iter()
+                    .all(|c| e.aabb_fit(c) == Aabb::fit(c.as_slice()))
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "aabb_fit of one point is that point",
+            points: 1,
+            run: |e| {
+                let p = Vec3::new(-1.0, 2.0, -3.0);
+                e.aabb_fit(&[p]) == Aabb::from_point(p)
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "aabb_merge is exact (disjoint, overlapping, nested)",
+            points: 3,
+            run: |e| {
+                let cases = [
+                    (b([0.0; 3], [1.0; 3]), b([5.0; 3], [6.0; 3])),
+                    (
+                        b([-2.0, 0.0, 0.0], [1.0; 3]),
+                        b([0.0, -3.0, 0.5], [0.5, 4.0, 9.0]),
+                    ),
+                    (b([0.0; 3], [10.0; 3]), b([4.0; 3], [5.0; 3])),
+                ];
+                cases.iter().all(|(x, y)| {
+                    e.aabb_merge(x, y) == x.union(y) && e.aabb_merge(y, x) == x.union(y)
+                })
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "sphere_fit contains every point (near and far from the origin)",
+            points: 4,
+            run: |e| {
+                clouds().iter().all(|c| {
+                    let s = e.sphere_fit(c);
+                    c.iter().all(|&p| s.contains_point(p))
+                })
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "sphere_fit is within 1.25x of the minimal radius",
+            points: 3,
+            run: |e| {
+                clouds().iter().all(|c| {
+                    let s = e.sphere_fit(c);
+                    let w = Sphere::welzl(c.as_slice());
+                    s.radius <= w.radius * 1.25 + 1e-3
+                })
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "sphere_merge contains both spheres",
+            points: 3,
+            run: |e| {
+                let mut r = Rng(7);
+                (0..200).all(|_| {
                     let x = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
                     let y = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
-                    let best = x.merge(&y).radius;
-                    e.sphere_merge(&x, &y).radius <= best * (1.0 + 1e-4) + 1e-5
+                    let m = e.sphere_merge(&x, &y);
+                    m.contains(&x) && m.contains(&y)
                 })
-        }},
+            },
+        },
+        Check {
+            exercise: 2,
+            name: "sphere_merge is minimal (and returns a containing input as is)",
+            points: 2,
+            run: |e| {
+                let mut r = Rng(8);
+                let nested = Sphere::new(Vec3::ZERO, 5.0);
+                let inner = Sphere::new(Vec3::ONE, 1.0);
+                (e.sphere_merge(&nested, &inner).radius - 5.0).abs() < 1e-4
+                    && (0..200).all(|_| {
+                        let x = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                        let y = Sphere::new(r.point(10.0, Vec3::ZERO), r.next() * 3.0);
+                        let best = x.merge(&y).radius;
+                        e.sphere_merge(&x, &y).radius <= best * (1.0 + 1e-4) + 1e-5
+                    })
+            },
+        },
         // Exercise 3
-        Check { exercise: 3, name: "returns n / 2", points: 2, run: |e| {
-            let mut r = Rng(3);
-            (1..40).all(|n| {
-                let c = r.cloud(n, 10.0, Vec3::ZERO);
-                let mut idx: Vec<u32> = (0..n as u32).collect();
-                e.median_partition(&c, &mut idx) == n / 2
-            })
-        }},
-        Check { exercise: 3, name: "indices stay a permutation", points: 2, run: |e| {
-            let mut r = Rng(4);
-            let c = r.cloud(101, 10.0, Vec3::ZERO);
-            let mut idx: Vec<u32> = (0..101).rev().collect();
-            e.median_partition(&c, &mut idx);
-            idx.sort_unstable();
-            idx == (0..101).collect::<Vec<u32>>()
-        }},
-        Check { exercise: 3, name: "left half <= right half along the longest axis (y here)", points: 3, run: |e| {
-            median_ok(e, Vec3::new(1.0, 20.0, 3.0), 5)
-        }},
-        Check { exercise: 3, name: "the axis comes from the centroids (z here), not fixed", points: 3, run: |e| {
-            median_ok(e, Vec3::new(2.0, 1.0, 30.0), 6) && median_ok(e, Vec3::new(40.0, 1.0, 3.0), 9)
-        }},
+        Check {
+            exercise: 3,
+            name: "returns n / 2",
+            points: 2,
+            run: |e| {
+                let mut r = Rng(3);
+                (1..40).all(|n| {
+                    let c = r.cloud(n, 10.0, Vec3::ZERO);
+                    let mut idx: Vec<u32> = (0..n as u32).collect();
+                    e.median_partition(&c, &mut idx) == n / 2
+                })
+            },
+        },
+        Check {
+            exercise: 3,
+            name: "indices stay a permutation",
+            points: 2,
+            run: |e| {
+                let mut r = Rng(4);
+                let c = r.cloud(101, 10.0, Vec3::ZERO);
+                let mut idx: Vec<u32> = (0..101).rev().collect();
+                e.median_partition(&c, &mut idx);
+                idx.sort_unstable();
+                idx == (0..101).collect::<Vec<u32>>()
+            },
+        },
+        Check {
+            exercise: 3,
+            name: "left half <= right half along the longest axis (y here)",
+            points: 3,
+            run: |e| median_ok(e, Vec3::new(1.0, 20.0, 3.0), 5),
+        },
+        Check {
+            exercise: 3,
+            name: "the axis comes from the centroids (z here), not fixed",
+            points: 3,
+            run: |e| {
+                median_ok(e, Vec3::new(2.0, 1.0, 30.0), 6)
+                    && median_ok(e, Vec3::new(40.0, 1.0, 3.0), 9)
+            },
+        },
     ]
 }
 
 fn median_ok(e: &dyn Exercises, stretch: Vec3, seed: u64) -> bool {
     let mut r = Rng(seed);
-    let c: Vec<Vec3> = r.cloud(77, 1.0, Vec3::ZERO).iter().map(|p| *p * stretch).collect();
+    let c: Vec<Vec3> = r
+        .cloud(77, 1.0, Vec3::ZERO)
+        .iter()
+        .map(|p| *p * stretch)
+        .collect();
     let axis = Aabb::fit(c.as_slice()).longest_axis();
     let mut idx: Vec<u32> = (0..77).collect();
     let mid = e.median_partition(&c, &mut idx);
     if mid != 38 {
         return false;
     }
-    let left = idx[..mid].iter().map(|&i| c[i as usize][axis]).fold(f32::NEG_INFINITY, f32::max);
-    let right = idx[mid..].iter().map(|&i| c[i as usize][axis]).fold(f32::INFINITY, f32::min);
+    let left = idx[..mid]
+        .iter()
+        .map(|&i| c[i as usize][axis])
+        .fold(f32::NEG_INFINITY, f32::max);
+    let right = idx[mid..]
+        .iter()
+        .map(|&i| c[i as usize][axis])
+        .fold(f32::INFINITY, f32::min);
     left <= right
 }
 
@@ -224,7 +329,13 @@ pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
     panic::set_hook(Box::new(|_| {}));
     let mut scores: Vec<ExerciseScore> = EXERCISES
         .iter()
-        .map(|&(exercise, title)| ExerciseScore { exercise, title, earned: 0, possible: 0, failed: vec![] })
+        .map(|&(exercise, title)| ExerciseScore {
+            exercise,
+            title,
+            earned: 0,
+            possible: 0,
+            failed: vec![],
+        })
         .collect();
     for c in checks() {
         let s = &mut scores[(c.exercise - 1) as usize];
@@ -250,13 +361,23 @@ pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
 pub fn report(scores: &[ExerciseScore]) -> String {
     let mut s = format!("{:<4} {:<40} {:>8}\n", "#", "exercise", "points");
     for x in scores {
-        s += &format!("{:<4} {:<40} {:>8}\n", x.exercise, x.title, format!("{}/{}", x.earned, x.possible));
+        s += &format!(
+            "{:<4} {:<40} {:>8}\n",
+            x.exercise,
+            x.title,
+            format!("{}/{}", x.earned, x.possible)
+        );
         for f in &x.failed {
             s += &format!("       - failed: {f}\n");
         }
     }
-    let (e, p): (u32, u32) = scores.iter().fold((0, 0), |(e, p), x| (e + x.earned, p + x.possible));
-    s += &format!("total: {e}/{p} points ({}%)\n", if p == 0 { 0 } else { e * 100 / p });
+    let (e, p): (u32, u32) = scores
+        .iter()
+        .fold((0, 0), |(e, p), x| (e + x.earned, p + x.possible));
+    s += &format!(
+        "total: {e}/{p} points ({}%)\n",
+        (e * 100).checked_div(p).unwrap_or(0)
+    );
     s
 }
 
@@ -291,7 +412,11 @@ mod tests {
         }
         fn aabb_fit(&self, points: &[Vec3]) -> Aabb {
             match self.0 {
-                3 => points.iter().fold(Aabb::new(Vec3::ZERO, Vec3::ZERO), |b, p| Aabb::new(b.min.min(*p), b.max.max(*p))),
+                3 => points
+                    .iter()
+                    .fold(Aabb::new(Vec3::ZERO, Vec3::ZERO), |b, p| {
+                        Aabb::new(b.min.min(*p), b.max.max(*p))
+                    }),
                 _ => Reference.aabb_fit(points),
             }
         }
@@ -321,7 +446,10 @@ mod tests {
         }
         fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere {
             match self.0 {
-                6 => Sphere::new((a.center + b.center) * 0.5, a.center.distance(b.center) * 0.5 + a.radius.max(b.radius)),
+                6 => Sphere::new(
+                    (a.center + b.center) * 0.5,
+                    a.center.distance(b.center) * 0.5 + a.radius.max(b.radius),
+                ),
                 _ => Reference.sphere_merge(a, b),
             }
         }
@@ -329,7 +457,9 @@ mod tests {
             match self.0 {
                 7 => {
                     let mid = indices.len() / 2;
-                    indices.sort_unstable_by(|&a, &b| centroids[a as usize].x.total_cmp(&centroids[b as usize].x));
+                    indices.sort_unstable_by(|&a, &b| {
+                        centroids[a as usize].x.total_cmp(&centroids[b as usize].x)
+                    });
                     mid
                 }
                 8 => indices.len() / 2, // no reordering at all
@@ -340,9 +470,21 @@ mod tests {
 
     #[test]
     fn plausible_wrong_answers_lose_points() {
-        for (wrong, exercise) in [(1, 1), (2, 1), (3, 2), (4, 2), (5, 2), (6, 2), (7, 3), (8, 3)] {
+        for (wrong, exercise) in [
+            (1, 1),
+            (2, 1),
+            (3, 2),
+            (4, 2),
+            (5, 2),
+            (6, 2),
+            (7, 3),
+            (8, 3),
+        ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
-            assert!(e < p, "wrong answer {wrong} got full marks on exercise {exercise}");
+            assert!(
+                e < p,
+                "wrong answer {wrong} got full marks on exercise {exercise}"
+            );
         }
     }
 

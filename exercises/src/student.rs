@@ -1,4 +1,5 @@
 //! Your answers. Replace each `todo!()`; run the grader to see your points.
+#![allow(clippy::todo)] // the stubs are meant to be unfinished
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;

@@ -25,7 +25,11 @@ fn parry_aabbs(tris: &[Triangle]) -> Vec<PAabb> {
 /// (area ratio 1) is added to match bvhkit's single root node.
 fn parry_sah(bvh: &Bvh) -> f64 {
     let area = |b: PAabb| {
-        let e = [(b.maxs.x - b.mins.x) as f64, (b.maxs.y - b.mins.y) as f64, (b.maxs.z - b.mins.z) as f64];
+        let e = [
+            (b.maxs.x - b.mins.x) as f64,
+            (b.maxs.y - b.mins.y) as f64,
+            (b.maxs.z - b.mins.z) as f64,
+        ];
         2.0 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0])
     };
     let root = area(bvh.root_aabb());
@@ -44,11 +48,27 @@ fn report_quality(tris: &[Triangle]) {
     eprintln!("SAH cost, {} triangles:", tris.len());
     eprintln!("  parry3d binned (1 per leaf)  {:.3}", parry_sah(&p));
     for (name, cfg) in [
-        ("bvhkit sah (1 per leaf)", TopDown::sah().with_max_leaf_size(1)),
+        (
+            "bvhkit sah (1 per leaf)",
+            TopDown::sah().with_max_leaf_size(1),
+        ),
         ("bvhkit sah (4 per leaf)", TopDown::sah()),
-        ("bvhkit sah-8bins (1 per leaf)", TopDown { split: bvhkit::SplitPoint::Bins(8), ..TopDown::sah() }.with_max_leaf_size(1)),
-        ("bvhkit spatial-median (1 per leaf)", bvhkit::build::PRESETS[4].builder.with_max_leaf_size(1)),
-        ("bvhkit sah-sweep (1 per leaf)", TopDown::sah_sweep().with_max_leaf_size(1)),
+        (
+            "bvhkit sah-8bins (1 per leaf)",
+            TopDown {
+                split: bvhkit::SplitPoint::Bins(8),
+                ..TopDown::sah()
+            }
+            .with_max_leaf_size(1),
+        ),
+        (
+            "bvhkit spatial-median (1 per leaf)",
+            bvhkit::build::PRESETS[4].builder.with_max_leaf_size(1),
+        ),
+        (
+            "bvhkit sah-sweep (1 per leaf)",
+            TopDown::sah_sweep().with_max_leaf_size(1),
+        ),
     ] {
         let t = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, tris).unwrap();
         eprintln!("  {name:<30} {:.3}", t.view().stats().sah_cost);
@@ -62,12 +82,24 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("build-81920");
     g.sample_size(20);
     g.bench_function("parry3d-binned", |b| {
-        b.iter(|| black_box(Bvh::from_leaves(BvhBuildStrategy::Binned, black_box(&aabbs))))
+        b.iter(|| {
+            black_box(Bvh::from_leaves(
+                BvhBuildStrategy::Binned,
+                black_box(&aabbs),
+            ))
+        })
     });
     for (name, cfg) in [
         ("bvhkit-sah-leaf1", TopDown::sah().with_max_leaf_size(1)),
         ("bvhkit-sah-leaf4", TopDown::sah()),
-        ("bvhkit-sah8-leaf1", TopDown { split: bvhkit::SplitPoint::Bins(8), ..TopDown::sah() }.with_max_leaf_size(1)),
+        (
+            "bvhkit-sah8-leaf1",
+            TopDown {
+                split: bvhkit::SplitPoint::Bins(8),
+                ..TopDown::sah()
+            }
+            .with_max_leaf_size(1),
+        ),
     ] {
         let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
         let mut idx = vec![0u32; tris.len()];

@@ -6,7 +6,10 @@ fn main() {
     let mut idx = vec![0u32; tris.len()];
     let mut cache = vec![PrimitiveRef::EMPTY; tris.len()];
     let cached = std::env::args().any(|a| a == "--cached");
-    let leaf: u32 = std::env::var("LEAF").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
+    let leaf: u32 = std::env::var("LEAF")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1);
     let mut cfg = TopDown::sah().with_max_leaf_size(leaf);
     if std::env::args().any(|a| a == "--longest") {
         cfg.axis = bvhkit::AxisChoice::Longest;
@@ -18,11 +21,21 @@ fn main() {
     let mut total = 0;
     for _ in 0..20 {
         total += if cached {
-            cfg.build_cached(&tris, &mut nodes, &mut idx, &mut cache).unwrap().node_count()
+            cfg.build_cached(&tris, &mut nodes, &mut idx, &mut cache)
+                .unwrap()
+                .node_count()
         } else {
             cfg.build(&tris, &mut nodes, &mut idx).unwrap().node_count()
         };
     }
-    let sah = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, &tris).unwrap().view().stats().sah_cost;
-    println!("sah {sah:.3}, {} nodes, {:.2} ms per build", total / 20, t.elapsed().as_secs_f64() * 1e3 / 20.0);
+    let sah = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, &tris)
+        .unwrap()
+        .view()
+        .stats()
+        .sah_cost;
+    println!(
+        "sah {sah:.3}, {} nodes, {:.2} ms per build",
+        total / 20,
+        t.elapsed().as_secs_f64() * 1e3 / 20.0
+    );
 }

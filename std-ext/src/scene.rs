@@ -67,10 +67,26 @@ fn icosphere(subdivisions: u32) -> (Vec<Vec3>, Vec<[usize; 3]>) {
     .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
     .collect();
     let mut f: Vec<[usize; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     for _ in 0..subdivisions {
         let mut mid: HashMap<(usize, usize), usize> = HashMap::new();
@@ -105,6 +121,10 @@ mod tests {
         assert!(a.iter().all(|t| t.area() > 0.0));
         // The objects overlap somewhere but not everywhere.
         let pairs = crate::tour::reference_pairs(&a, &b);
-        assert!(pairs.len() > 100 && pairs.len() < 1_000_000, "{}", pairs.len());
+        assert!(
+            pairs.len() > 100 && pairs.len() < 1_000_000,
+            "{}",
+            pairs.len()
+        );
     }
 }

@@ -160,7 +160,11 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         scene::default_pair()
     } else {
         let a = scene::rock(opts.subdivisions, 1);
-        let b = scene::transformed(&scene::rock(opts.subdivisions, 2), 0.7, bvhkit::glam::Vec3::new(1.35, 0.2, 0.1));
+        let b = scene::transformed(
+            &scene::rock(opts.subdivisions, 2),
+            0.7,
+            bvhkit::glam::Vec3::new(1.35, 0.2, 0.1),
+        );
         (a, b)
     };
     progress("brute-force reference");
@@ -170,23 +174,36 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
     let mut strategies = Vec::new();
     for p in PRESETS {
         progress(p.name);
-        strategies.push(measure::<Aabb>(p.name, &p.builder, &a, &b, &reference, opts.runs)?);
+        strategies.push(measure::<Aabb>(
+            p.name, &p.builder, &a, &b, &reference, opts.runs,
+        )?);
     }
     let sah = TopDown::sah();
     let mut volumes = Vec::new();
     progress("volumes");
     volumes.push(measure::<Aabb>("sah", &sah, &a, &b, &reference, opts.runs)?);
-    volumes.push(measure::<Sphere>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Sphere>(
+        "sah", &sah, &a, &b, &reference, opts.runs,
+    )?);
     volumes.push(measure::<Obb>("sah", &sah, &a, &b, &reference, opts.runs)?);
-    volumes.push(measure::<Dop14>("sah", &sah, &a, &b, &reference, opts.runs)?);
-    volumes.push(measure::<Dop18>("sah", &sah, &a, &b, &reference, opts.runs)?);
-    volumes.push(measure::<Dop26>("sah", &sah, &a, &b, &reference, opts.runs)?);
+    volumes.push(measure::<Dop14>(
+        "sah", &sah, &a, &b, &reference, opts.runs,
+    )?);
+    volumes.push(measure::<Dop18>(
+        "sah", &sah, &a, &b, &reference, opts.runs,
+    )?);
+    volumes.push(measure::<Dop26>(
+        "sah", &sah, &a, &b, &reference, opts.runs,
+    )?);
     let rows = strategies.iter().chain(&volumes);
     let queries = rows.clone().count();
     let verified = rows.filter(|r| r.matches).count();
     Ok(TourReport {
         scene: SceneInfo {
-            name: format!("two overlapping rocks (icosphere, {} subdivisions)", opts.subdivisions),
+            name: format!(
+                "two overlapping rocks (icosphere, {} subdivisions)",
+                opts.subdivisions
+            ),
             triangles_a: a.len(),
             triangles_b: b.len(),
             reference_pairs: reference.len(),
@@ -202,7 +219,16 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
 fn table(title: &str, rows: &[Row]) -> String {
     let mut s = format!(
         "\n{title}\n{:<17} {:<7} {:>9} {:>9} {:>6} {:>9} {:>11} {:>9} {:>9} {:>6}\n",
-        "strategy", "volume", "build ms", "SAH cost", "depth", "nodes", "bytes", "query ms", "pairs", "ok"
+        "strategy",
+        "volume",
+        "build ms",
+        "SAH cost",
+        "depth",
+        "nodes",
+        "bytes",
+        "query ms",
+        "pairs",
+        "ok"
     );
     for r in rows {
         s += &format!(
@@ -226,10 +252,23 @@ fn table(title: &str, rows: &[Row]) -> String {
 pub fn render(r: &TourReport) -> String {
     let mut s = format!(
         "scene: {}: {} + {} triangles, {} overlapping pairs (brute force: {:.0} ms)\n",
-        r.scene.name, r.scene.triangles_a, r.scene.triangles_b, r.scene.reference_pairs, r.scene.reference_ms
+        r.scene.name,
+        r.scene.triangles_a,
+        r.scene.triangles_b,
+        r.scene.reference_pairs,
+        r.scene.reference_ms
     );
-    s += &table("Top-down strategies (AABB trees, A-vs-B query, descend the larger volume):", &r.strategies);
-    s += &table("Bounding volumes (binned SAH; SAH cost uses each volume's own areas):", &r.volumes);
-    s += &format!("\nverified: {}/{} queries match brute force\n", r.verified, r.queries);
+    s += &table(
+        "Top-down strategies (AABB trees, A-vs-B query, descend the larger volume):",
+        &r.strategies,
+    );
+    s += &table(
+        "Bounding volumes (binned SAH; SAH cost uses each volume's own areas):",
+        &r.volumes,
+    );
+    s += &format!(
+        "\nverified: {}/{} queries match brute force\n",
+        r.verified, r.queries
+    );
     s
 }

@@ -1,11 +1,11 @@
 //! Shared helpers for the integration tests: scene generators, every builder
 //! configuration, and the brute-force comparison run on every tree.
 
+use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, overlapping_pairs, Aabb, AxisChoice, BoundingVolume, Bvh, Descent, Node,
     OnFailure, Partition, Primitive, SplitPoint, Stop, TopDown, Triangle,
 };
-use bvhkit::glam::Vec3;
 use proptest::prelude::*;
 
 /// Every partition criterion.
@@ -87,7 +87,13 @@ pub fn any_top_down() -> impl Strategy<Value = TopDown> {
 
 /// Coordinate frames that stress floating point: near the origin, far away,
 /// tiny, and huge (1e30).
-pub const FRAMES: [(f32, f32); 5] = [(1.0, 0.0), (1.0, 1.0e5), (1.0e-3, 0.0), (1.0e27, 1.0e30), (1.0, -2.0e4)];
+pub const FRAMES: [(f32, f32); 5] = [
+    (1.0, 0.0),
+    (1.0, 1.0e5),
+    (1.0e-3, 0.0),
+    (1.0e27, 1.0e30),
+    (1.0, -2.0e4),
+];
 
 fn point() -> impl Strategy<Value = Vec3> {
     (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
@@ -96,7 +102,7 @@ fn point() -> impl Strategy<Value = Vec3> {
 /// One raw triangle: ordinary, zero-area (point or segment), or flat in z.
 fn triangle() -> impl Strategy<Value = Triangle> {
     prop_oneof![
-        6 => (point(), point(), point()).prop_map(|(a, b, c)| Triangle::new(a, (a + b * 0.2) , a + c * 0.2)),
+        6 => (point(), point(), point()).prop_map(|(a, b, c)| Triangle::new(a, a + b * 0.2, a + c * 0.2)),
         1 => point().prop_map(|a| Triangle::new(a, a, a)),
         1 => (point(), point()).prop_map(|(a, b)| Triangle::new(a, b, a)),
         1 => (point(), point()).prop_map(|(a, b)| Triangle::new(a, Vec3::new(b.x, b.y, a.z), Vec3::new(a.x, b.y, a.z))),
@@ -105,8 +111,12 @@ fn triangle() -> impl Strategy<Value = Triangle> {
 
 /// A scene of `1..max` triangles with duplicates, in one of the [`FRAMES`].
 pub fn scene(max: usize) -> impl Strategy<Value = Vec<Triangle>> {
-    (prop::collection::vec(triangle(), 1..max), 0..FRAMES.len(), any::<u8>()).prop_map(
-        |(mut tris, frame, dup)| {
+    (
+        prop::collection::vec(triangle(), 1..max),
+        0..FRAMES.len(),
+        any::<u8>(),
+    )
+        .prop_map(|(mut tris, frame, dup)| {
             // Duplicate a few triangles exactly (identical centroids).
             let k = tris.len();
             for i in 0..(dup as usize % 4).min(k) {
@@ -120,15 +130,17 @@ pub fn scene(max: usize) -> impl Strategy<Value = Vec<Triangle>> {
                 }
             }
             tris
-        },
-    )
+        })
 }
+
+/// A built tree's storage: nodes, indices, and the depth.
+pub type Built<B> = (Vec<Node<B>>, Vec<u32>, usize);
 
 /// Builds with Vec storage; returns the owned storage.
 pub fn build<B: BoundingVolume, P: Primitive>(
     cfg: &TopDown,
     prims: &[P],
-) -> Result<(Vec<Node<B>>, Vec<u32>, usize), bvhkit::Error> {
+) -> Result<Built<B>, bvhkit::Error> {
     let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
     let mut idx = vec![0u32; cfg.index_capacity(prims.len())];
     let (used, depth) = {
@@ -149,7 +161,10 @@ pub fn open<'a, B: BoundingVolume, P: Primitive>(
     let mut seen = vec![0u32; Bvh::<B>::seen_words(nodes.len(), prims.len())];
     match Bvh::from_parts(nodes, idx, prims, &mut seen) {
         Ok(b) => b,
-        Err(e) => panic!("tree over {} primitives failed validation: {e}", prims.len()),
+        Err(e) => panic!(
+            "tree over {} primitives failed validation: {e}",
+            prims.len()
+        ),
     }
 }
 

@@ -43,8 +43,16 @@ fn count<R>(f: impl FnOnce() -> R) -> (R, usize) {
 fn grid(n: usize, shift: f32) -> Vec<Triangle> {
     (0..n)
         .map(|i| {
-            let o = Vec3::new((i % 17) as f32, (i / 17 % 13) as f32 + shift, (i / 221) as f32);
-            Triangle::new(o, o + Vec3::new(1.2, 0.1, 0.0), o + Vec3::new(0.0, 1.1, 0.3))
+            let o = Vec3::new(
+                (i % 17) as f32,
+                (i / 17 % 13) as f32 + shift,
+                (i / 221) as f32,
+            );
+            Triangle::new(
+                o,
+                o + Vec3::new(1.2, 0.1, 0.0),
+                o + Vec3::new(0.0, 1.1, 0.3),
+            )
         })
         .collect()
 }
@@ -82,7 +90,10 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
             (ta, tb)
         });
         if allocs != 0 {
-            failures.push(format!("{} {name}: build allocated {allocs} times", B::NAME));
+            failures.push(format!(
+                "{} {name}: build allocated {allocs} times",
+                B::NAME
+            ));
         }
         let (ta, tb) = trees;
         let (found, allocs) = count(|| {
@@ -98,10 +109,16 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
             total + c.finish().unwrap().len() + ta.stats().leaves
         });
         if allocs != 0 {
-            failures.push(format!("{} {name}: queries allocated {allocs} times", B::NAME));
+            failures.push(format!(
+                "{} {name}: queries allocated {allocs} times",
+                B::NAME
+            ));
         }
         if found == 0 {
-            failures.push(format!("{} {name}: the scene produced no results; the test would prove nothing", B::NAME));
+            failures.push(format!(
+                "{} {name}: the scene produced no results; the test would prove nothing",
+                B::NAME
+            ));
         }
     }
 }
@@ -122,7 +139,11 @@ fn main() {
     for f in &failures {
         eprintln!("FAILED: {f}");
     }
-    println!("{} passed, {} failed", cases - failures.len().min(cases), failures.len());
+    println!(
+        "{} passed, {} failed",
+        cases - failures.len().min(cases),
+        failures.len()
+    );
     if !failures.is_empty() {
         std::process::exit(1);
     }

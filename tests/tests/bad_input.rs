@@ -6,7 +6,15 @@ use bvhkit::{
 };
 
 fn tris(n: usize) -> Vec<Triangle> {
-    (0..n).map(|i| Triangle::new(Vec3::splat(i as f32), Vec3::splat(i as f32) + Vec3::X, Vec3::splat(i as f32) + Vec3::Y)).collect()
+    (0..n)
+        .map(|i| {
+            Triangle::new(
+                Vec3::splat(i as f32),
+                Vec3::splat(i as f32) + Vec3::X,
+                Vec3::splat(i as f32) + Vec3::Y,
+            )
+        })
+        .collect()
 }
 
 #[test]
@@ -15,12 +23,24 @@ fn node_capacity_exceeded_is_an_error() {
     let mut idx = vec![0u32; 100];
     for cap in [0usize, 1, 10, 198] {
         let mut nodes = vec![Node::<Aabb>::EMPTY; cap];
-        let err = TopDown::sah().with_max_leaf_size(1).build(&t, &mut nodes, &mut idx).unwrap_err();
-        assert_eq!(err, Error::NodeCapacity { needed: 199, available: cap });
+        let err = TopDown::sah()
+            .with_max_leaf_size(1)
+            .build(&t, &mut nodes, &mut idx)
+            .unwrap_err();
+        assert_eq!(
+            err,
+            Error::NodeCapacity {
+                needed: 199,
+                available: cap
+            }
+        );
         assert!(err.to_string().contains("199"));
     }
     let mut nodes = vec![Node::<Aabb>::EMPTY; 199];
-    assert!(TopDown::sah().with_max_leaf_size(1).build(&t, &mut nodes, &mut idx).is_ok());
+    assert!(TopDown::sah()
+        .with_max_leaf_size(1)
+        .build(&t, &mut nodes, &mut idx)
+        .is_ok());
 }
 
 #[test]
@@ -28,9 +48,23 @@ fn index_capacity_exceeded_is_an_error() {
     let t = tris(50);
     let mut nodes = vec![Node::<Aabb>::EMPTY; 99];
     let mut idx = vec![0u32; 49];
-    assert_eq!(TopDown::sah().build(&t, &mut nodes, &mut idx).unwrap_err(), Error::IndexCapacity { needed: 50, available: 49 });
+    assert_eq!(
+        TopDown::sah().build(&t, &mut nodes, &mut idx).unwrap_err(),
+        Error::IndexCapacity {
+            needed: 50,
+            available: 49
+        }
+    );
     let mut idx = vec![0u32; 99];
-    assert_eq!(TopDown::sah_sweep().build(&t, &mut nodes, &mut idx).unwrap_err(), Error::IndexCapacity { needed: 100, available: 99 });
+    assert_eq!(
+        TopDown::sah_sweep()
+            .build(&t, &mut nodes, &mut idx)
+            .unwrap_err(),
+        Error::IndexCapacity {
+            needed: 100,
+            available: 99
+        }
+    );
 }
 
 #[test]
@@ -40,13 +74,46 @@ fn invalid_configurations_are_errors() {
     let mut idx = vec![0u32; 20];
     let bad = [
         TopDown::sah().with_max_leaf_size(0),
-        TopDown { stop: Stop { max_depth: MAX_DEPTH as u32 + 1, ..Stop::default() }, ..TopDown::sah() },
-        TopDown { stop: Stop { min_volume: f32::NAN, ..Stop::default() }, ..TopDown::sah() },
-        TopDown { split: SplitPoint::Bins(1), ..TopDown::sah() },
-        TopDown { split: SplitPoint::Bins(200), ..TopDown::sah() },
-        TopDown { split: SplitPoint::RandomCentroids { count: 0, seed: 1 }, ..TopDown::sah() },
-        TopDown { split: SplitPoint::Sweep, partition: Partition::Volume, ..TopDown::sah() },
-        TopDown { partition: Partition::Weighted { surface_area: -1.0, volume: 0.0, overlap: 0.0, balance: 0.0 }, ..TopDown::sah() },
+        TopDown {
+            stop: Stop {
+                max_depth: MAX_DEPTH as u32 + 1,
+                ..Stop::default()
+            },
+            ..TopDown::sah()
+        },
+        TopDown {
+            stop: Stop {
+                min_volume: f32::NAN,
+                ..Stop::default()
+            },
+            ..TopDown::sah()
+        },
+        TopDown {
+            split: SplitPoint::Bins(1),
+            ..TopDown::sah()
+        },
+        TopDown {
+            split: SplitPoint::Bins(200),
+            ..TopDown::sah()
+        },
+        TopDown {
+            split: SplitPoint::RandomCentroids { count: 0, seed: 1 },
+            ..TopDown::sah()
+        },
+        TopDown {
+            split: SplitPoint::Sweep,
+            partition: Partition::Volume,
+            ..TopDown::sah()
+        },
+        TopDown {
+            partition: Partition::Weighted {
+                surface_area: -1.0,
+                volume: 0.0,
+                overlap: 0.0,
+                balance: 0.0,
+            },
+            ..TopDown::sah()
+        },
     ];
     for cfg in bad {
         match cfg.build(&t, &mut nodes, &mut idx) {
@@ -58,12 +125,25 @@ fn invalid_configurations_are_errors() {
 
 #[test]
 fn non_finite_user_primitives_are_rejected() {
-    let boxes = [Aabb::new(Vec3::ZERO, Vec3::ONE), Aabb::new(Vec3::ZERO, Vec3::new(1.0, f32::NAN, 1.0))];
+    let boxes = [
+        Aabb::new(Vec3::ZERO, Vec3::ONE),
+        Aabb::new(Vec3::ZERO, Vec3::new(1.0, f32::NAN, 1.0)),
+    ];
     let mut nodes = vec![Node::<Aabb>::EMPTY; 3];
     let mut idx = vec![0u32; 2];
-    assert_eq!(TopDown::sah().build(&boxes, &mut nodes, &mut idx).unwrap_err(), Error::NonFiniteCoordinate { primitive: 1 });
+    assert_eq!(
+        TopDown::sah()
+            .build(&boxes, &mut nodes, &mut idx)
+            .unwrap_err(),
+        Error::NonFiniteCoordinate { primitive: 1 }
+    );
     let pts = [Vec3::ONE, Vec3::new(f32::INFINITY, 0.0, 0.0)];
-    assert_eq!(TopDown::sah().build(&pts, &mut nodes, &mut idx).unwrap_err(), Error::NonFiniteCoordinate { primitive: 1 });
+    assert_eq!(
+        TopDown::sah()
+            .build(&pts, &mut nodes, &mut idx)
+            .unwrap_err(),
+        Error::NonFiniteCoordinate { primitive: 1 }
+    );
 }
 
 #[test]
@@ -74,9 +154,21 @@ fn a_full_result_buffer_reports_the_true_count() {
     let bvh = TopDown::sah().build(&t, &mut nodes, &mut idx).unwrap();
     let mut buf = [0u32; 3];
     let mut c = Collector::new(&mut buf);
-    let n = bvh.overlapping(&t, &Aabb::new(Vec3::splat(-100.0), Vec3::splat(100.0)), |i| c.push(i)).unwrap();
+    let n = bvh
+        .overlapping(
+            &t,
+            &Aabb::new(Vec3::splat(-100.0), Vec3::splat(100.0)),
+            |i| c.push(i),
+        )
+        .unwrap();
     assert_eq!(n, 20);
-    assert_eq!(c.finish().unwrap_err(), Error::ResultCapacity { found: 20, capacity: 3 });
+    assert_eq!(
+        c.finish().unwrap_err(),
+        Error::ResultCapacity {
+            found: 20,
+            capacity: 3
+        }
+    );
 }
 
 #[test]
@@ -86,10 +178,22 @@ fn every_error_has_a_message() {
         Error::NonFiniteCoordinate { primitive: 3 },
         Error::CoordinateOutOfRange { primitive: 3 },
         Error::IndexOverflow { count: 1 << 40 },
-        Error::NodeCapacity { needed: 9, available: 1 },
-        Error::IndexCapacity { needed: 9, available: 1 },
-        Error::ResultCapacity { found: 9, capacity: 1 },
-        Error::StackOverflow { depth: 99, capacity: 64 },
+        Error::NodeCapacity {
+            needed: 9,
+            available: 1,
+        },
+        Error::IndexCapacity {
+            needed: 9,
+            available: 1,
+        },
+        Error::ResultCapacity {
+            found: 9,
+            capacity: 1,
+        },
+        Error::StackOverflow {
+            depth: 99,
+            capacity: 64,
+        },
         Error::PrimitiveCountMismatch { tree: 9, given: 1 },
         Error::InvalidConfig("x"),
         Error::InvalidTree("y"),

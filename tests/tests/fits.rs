@@ -8,7 +8,10 @@ use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(128),
+        cases: std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(128),
         ..ProptestConfig::default()
     }
 }
@@ -18,17 +21,38 @@ fn points() -> impl Strategy<Value = Vec<Vec3>> {
     let p = || (-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0).prop_map(|(x, y, z)| Vec3::new(x, y, z));
     let set = prop_oneof![
         prop::collection::vec(p(), 1..40),
-        (p(), p(), prop::collection::vec(-3.0f32..3.0, 1..30)).prop_map(|(a, d, ts)| ts.iter().map(|&t| a + d * t).collect()),
-        (prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0), 1..30), -5.0f32..5.0).prop_map(|(xy, z)| xy.iter().map(|&(x, y)| Vec3::new(x, y, z)).collect()),
+        (p(), p(), prop::collection::vec(-3.0f32..3.0, 1..30))
+            .prop_map(|(a, d, ts)| ts.iter().map(|&t| a + d * t).collect()),
+        (
+            prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0), 1..30),
+            -5.0f32..5.0
+        )
+            .prop_map(|(xy, z)| xy.iter().map(|&(x, y)| Vec3::new(x, y, z)).collect()),
         p().prop_map(|a| vec![a]),
-        (prop::collection::vec(p(), 1..30), p()).prop_map(|(v, far)| { let mut v: Vec<Vec3> = v.iter().map(|q| *q * 1e-3).collect(); v.push(far); v }),
+        (prop::collection::vec(p(), 1..30), p()).prop_map(|(v, far)| {
+            let mut v: Vec<Vec3> = v.iter().map(|q| *q * 1e-3).collect();
+            v.push(far);
+            v
+        }),
     ];
-    (set, prop_oneof![Just(0.0f32), Just(1.0e5), Just(-7.3e4), Just(3.0e2)]).prop_map(|(v, off)| v.into_iter().map(|q| q + Vec3::new(off, -off * 0.5, off * 0.25)).collect())
+    (
+        set,
+        prop_oneof![Just(0.0f32), Just(1.0e5), Just(-7.3e4), Just(3.0e2)],
+    )
+        .prop_map(|(v, off)| {
+            v.into_iter()
+                .map(|q| q + Vec3::new(off, -off * 0.5, off * 0.25))
+                .collect()
+        })
 }
 
 fn all_inside<B: BoundingVolume>(b: &B, pts: &[Vec3]) -> Result<(), TestCaseError> {
     for (i, p) in pts.iter().enumerate() {
-        prop_assert!(b.contains_point(*p), "{} misses point {i} {p:?}: {b:?}", B::NAME);
+        prop_assert!(
+            b.contains_point(*p),
+            "{} misses point {i} {p:?}: {b:?}",
+            B::NAME
+        );
     }
     Ok(())
 }
@@ -113,7 +137,11 @@ fn obb_falls_back_to_the_aabb_for_a_cube() {
 
 #[test]
 fn kdop_is_tighter_than_its_box_on_a_diagonal_triangle() {
-    let tri = [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::new(1.0, 1.0, 1.0)];
+    let tri = [
+        Vec3::ZERO,
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    ];
     let d = Dop26::fit(&tri);
     let outside = Vec3::new(1.0, 0.0, 0.0); // inside the AABB, outside the hull
     assert!(Aabb::fit(&tri).contains_point(outside));

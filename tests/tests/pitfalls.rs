@@ -4,11 +4,16 @@
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, overlapping_pairs, Aabb, BoundingVolume, Bvh, Descent, Dop14, Error, Node, Obb,
-    OnFailure, Partition, SplitPoint, Sphere, TopDown, Triangle,
+    OnFailure, Partition, Sphere, SplitPoint, TopDown, Triangle,
 };
 use bvhkit_tests::{build, open};
 
-fn pairs_sorted<B: BoundingVolume>(cfg: &TopDown, a: &[Triangle], b: &[Triangle], rule: Descent) -> Vec<(u32, u32)> {
+fn pairs_sorted<B: BoundingVolume>(
+    cfg: &TopDown,
+    a: &[Triangle],
+    b: &[Triangle],
+    rule: Descent,
+) -> Vec<(u32, u32)> {
     let (na, ia, _) = build::<B, _>(cfg, a).unwrap();
     let (nb, ib, _) = build::<B, _>(cfg, b).unwrap();
     let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
@@ -36,7 +41,15 @@ fn all_configs() -> Vec<TopDown> {
                 continue;
             }
             for axis in bvhkit_tests::AXES {
-                v.push(TopDown { partition, split, axis, ..TopDown::sah() }.with_max_leaf_size(1));
+                v.push(
+                    TopDown {
+                        partition,
+                        split,
+                        axis,
+                        ..TopDown::sah()
+                    }
+                    .with_max_leaf_size(1),
+                );
             }
         }
     }
@@ -49,8 +62,13 @@ fn all_configs() -> Vec<TopDown> {
 #[test]
 fn builder_stack_stays_logarithmic_when_splits_peel_one_primitive() {
     // Exponentially spaced along x: SAH and spatial splits peel a few primitives at a time.
-    let tris: Vec<Triangle> = (0..5000).map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3)).collect();
-    let spatial = TopDown { split: SplitPoint::SpatialMedian, ..TopDown::sah() };
+    let tris: Vec<Triangle> = (0..5000)
+        .map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3))
+        .collect();
+    let spatial = TopDown {
+        split: SplitPoint::SpatialMedian,
+        ..TopDown::sah()
+    };
     for cfg in [TopDown::sah(), TopDown::sah_sweep(), spatial] {
         let (nodes, idx, depth) = build::<Aabb, _>(&cfg.with_max_leaf_size(1), &tris).unwrap();
         let t = open(&nodes, &idx, &tris);
@@ -69,12 +87,23 @@ fn degenerate_primitives_build_and_query() {
         a.push(Triangle::new(o, o + Vec3::X, o)); // segment
         a.push(Triangle::new(o, o + Vec3::X, o + Vec3::X * 2.0)); // collinear
     }
-    let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::new(0.25, 0.0, 0.0))).collect();
+    let b: Vec<_> = a
+        .iter()
+        .map(|t| t.translated(Vec3::new(0.25, 0.0, 0.0)))
+        .collect();
     let want = brute(&a, &b);
     assert!(!want.is_empty());
     for cfg in all_configs() {
-        assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger), want, "{cfg:?}");
-        assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, Descent::Simultaneous), want, "{cfg:?}");
+        assert_eq!(
+            pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger),
+            want,
+            "{cfg:?}"
+        );
+        assert_eq!(
+            pairs_sorted::<Sphere>(&cfg, &a, &b, Descent::Simultaneous),
+            want,
+            "{cfg:?}"
+        );
     }
 }
 
@@ -84,12 +113,23 @@ fn empty_single_and_two_primitive_inputs() {
     let none: [Triangle; 0] = [];
     let mut nodes = [Node::<Aabb>::EMPTY; 1];
     let mut idx = [0u32; 1];
-    assert_eq!(TopDown::sah().build(&none, &mut nodes, &mut idx).unwrap_err(), Error::EmptyInput);
+    assert_eq!(
+        TopDown::sah()
+            .build(&none, &mut nodes, &mut idx)
+            .unwrap_err(),
+        Error::EmptyInput
+    );
     for n in 1..=3 {
         let a: Vec<_> = (0..n).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
         for cfg in all_configs() {
-            assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &a, Descent::Larger), brute(&a, &a));
-            assert_eq!(pairs_sorted::<Obb>(&cfg, &a, &a, Descent::AFirst), brute(&a, &a));
+            assert_eq!(
+                pairs_sorted::<Aabb>(&cfg, &a, &a, Descent::Larger),
+                brute(&a, &a)
+            );
+            assert_eq!(
+                pairs_sorted::<Obb>(&cfg, &a, &a, Descent::AFirst),
+                brute(&a, &a)
+            );
         }
     }
 }
@@ -100,8 +140,12 @@ fn tiny_trees_far_apart_and_touching() {
     for na in 1..=3 {
         for nb in 1..=3 {
             for gap in [100.0f32, 1.0, 0.5, 0.0] {
-                let a: Vec<_> = (0..na).map(|i| tri_at(Vec3::new(i as f32, 0.0, 0.0), 1.0)).collect();
-                let b: Vec<_> = (0..nb).map(|i| tri_at(Vec3::new(i as f32, gap, 0.0), 1.0)).collect();
+                let a: Vec<_> = (0..na)
+                    .map(|i| tri_at(Vec3::new(i as f32, 0.0, 0.0), 1.0))
+                    .collect();
+                let b: Vec<_> = (0..nb)
+                    .map(|i| tri_at(Vec3::new(i as f32, gap, 0.0), 1.0))
+                    .collect();
                 let want = brute(&a, &b);
                 if gap == 100.0 {
                     assert!(want.is_empty());
@@ -128,9 +172,13 @@ fn nan_and_infinity_are_rejected_naming_the_primitive() {
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         for pos in [0usize, 3, 9] {
             for corner in 0..3 {
-                let mut tris: Vec<_> = (0..10).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
+                let mut tris: Vec<_> = (0..10)
+                    .map(|i| tri_at(Vec3::splat(i as f32), 1.0))
+                    .collect();
                 tris[pos].v[corner].y = bad;
-                let err = TopDown::sah().build(&tris, &mut nodes, &mut idx).unwrap_err();
+                let err = TopDown::sah()
+                    .build(&tris, &mut nodes, &mut idx)
+                    .unwrap_err();
                 assert_eq!(err, Error::NonFiniteCoordinate { primitive: pos });
                 assert!(err.to_string().contains(&format!("primitive {pos}")));
             }
@@ -142,8 +190,18 @@ fn nan_and_infinity_are_rejected_naming_the_primitive() {
 #[test]
 fn huge_finite_coordinates_work_and_beyond_the_limit_is_an_error() {
     for scale in [1e19f32, 1e25, 1e30] {
-        let a: Vec<_> = (0..50).map(|i| tri_at(Vec3::new(i as f32, (i % 5) as f32, 0.0) * scale * 1e-2 + Vec3::splat(scale), scale * 1e-2)).collect();
-        let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::splat(scale * 3e-3))).collect();
+        let a: Vec<_> = (0..50)
+            .map(|i| {
+                tri_at(
+                    Vec3::new(i as f32, (i % 5) as f32, 0.0) * scale * 1e-2 + Vec3::splat(scale),
+                    scale * 1e-2,
+                )
+            })
+            .collect();
+        let b: Vec<_> = a
+            .iter()
+            .map(|t| t.translated(Vec3::splat(scale * 3e-3)))
+            .collect();
         let want = brute(&a, &b);
         assert!(!want.is_empty(), "scale {scale}");
         for cfg in [TopDown::sah(), TopDown::sah_sweep(), TopDown::median()] {
@@ -157,7 +215,9 @@ fn huge_finite_coordinates_work_and_beyond_the_limit_is_an_error() {
     let mut nodes = [Node::<Aabb>::EMPTY; 1];
     let mut idx = [0u32; 1];
     assert_eq!(
-        TopDown::sah().build(&tris, &mut nodes, &mut idx).unwrap_err(),
+        TopDown::sah()
+            .build(&tris, &mut nodes, &mut idx)
+            .unwrap_err(),
         Error::CoordinateOutOfRange { primitive: 0 }
     );
 }
@@ -172,12 +232,27 @@ fn flat_scenes_along_each_axis() {
             }
             t
         };
-        let a: Vec<_> = (0..60).map(|i| flatten(tri_at(Vec3::new((i % 8) as f32, (i / 8) as f32, (i % 5) as f32), 1.1))).collect();
-        let b: Vec<_> = a.iter().map(|t| t.translated(Vec3::splat(0.3))).map(flatten).collect();
+        let a: Vec<_> = (0..60)
+            .map(|i| {
+                flatten(tri_at(
+                    Vec3::new((i % 8) as f32, (i / 8) as f32, (i % 5) as f32),
+                    1.1,
+                ))
+            })
+            .collect();
+        let b: Vec<_> = a
+            .iter()
+            .map(|t| t.translated(Vec3::splat(0.3)))
+            .map(flatten)
+            .collect();
         let want = brute(&a, &b);
         assert!(!want.is_empty());
         for cfg in all_configs() {
-            assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger), want, "{cfg:?}");
+            assert_eq!(
+                pairs_sorted::<Aabb>(&cfg, &a, &b, Descent::Larger),
+                want,
+                "{cfg:?}"
+            );
         }
         for cfg in [TopDown::sah(), TopDown::median()] {
             assert_eq!(pairs_sorted::<Obb>(&cfg, &a, &b, Descent::Larger), want);
@@ -198,7 +273,9 @@ fn identical_centroids_terminate() {
             let t = open(&nodes, &idx, &a);
             let s = t.stats();
             match on_failure {
-                OnFailure::ForceSplit => assert!(s.max_leaf_size <= cfg.stop.max_leaf_size as usize),
+                OnFailure::ForceSplit => {
+                    assert!(s.max_leaf_size <= cfg.stop.max_leaf_size as usize)
+                }
                 OnFailure::Leaf => assert_eq!((s.leaves, s.max_leaf_size), (1, 300)),
             }
         }
@@ -209,8 +286,17 @@ fn identical_centroids_terminate() {
 /// stacks: the builder bounds the depth, and leaves grow instead.
 #[test]
 fn depth_is_bounded_for_adversarial_input() {
-    let tris: Vec<Triangle> = (0..5000).map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3)).collect();
-    for cfg in [TopDown::sah().with_max_leaf_size(1), TopDown { split: SplitPoint::SpatialMedian, ..TopDown::sah() }.with_max_leaf_size(1)] {
+    let tris: Vec<Triangle> = (0..5000)
+        .map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3))
+        .collect();
+    for cfg in [
+        TopDown::sah().with_max_leaf_size(1),
+        TopDown {
+            split: SplitPoint::SpatialMedian,
+            ..TopDown::sah()
+        }
+        .with_max_leaf_size(1),
+    ] {
         let (nodes, idx, depth) = build::<Aabb, _>(&cfg, &tris).unwrap();
         assert!(depth <= bvhkit::MAX_DEPTH);
         let t = open(&nodes, &idx, &tris);
@@ -227,12 +313,23 @@ fn depth_is_bounded_for_adversarial_input() {
 /// Same input, same configuration: the same tree and the same pair order, bit for bit.
 #[test]
 fn builds_and_queries_are_deterministic() {
-    let a: Vec<_> = (0..400).map(|i| tri_at(Vec3::new((i * 37 % 101) as f32, (i * 11 % 29) as f32, (i % 7) as f32), 2.0)).collect();
+    let a: Vec<_> = (0..400)
+        .map(|i| {
+            tri_at(
+                Vec3::new((i * 37 % 101) as f32, (i * 11 % 29) as f32, (i % 7) as f32),
+                2.0,
+            )
+        })
+        .collect();
     for cfg in all_configs().into_iter().step_by(7) {
         let (n1, i1, _) = build::<Sphere, _>(&cfg, &a).unwrap();
         let (n2, i2, _) = build::<Sphere, _>(&cfg, &a).unwrap();
         assert_eq!(i1, i2);
-        assert!(n1.iter().zip(&n2).all(|(x, y)| x.first == y.first && x.count == y.count && x.bv.center.to_array().map(f32::to_bits) == y.bv.center.to_array().map(f32::to_bits) && x.bv.radius.to_bits() == y.bv.radius.to_bits()));
+        assert!(n1.iter().zip(&n2).all(|(x, y)| x.first == y.first
+            && x.count == y.count
+            && x.bv.center.to_array().map(f32::to_bits)
+                == y.bv.center.to_array().map(f32::to_bits)
+            && x.bv.radius.to_bits() == y.bv.radius.to_bits()));
         let t1 = open(&n1, &i1, &a);
         let mut p1 = Vec::new();
         let mut p2 = Vec::new();
@@ -245,10 +342,14 @@ fn builds_and_queries_are_deterministic() {
 /// A query given the wrong primitive slice is an error, not an out-of-bounds panic.
 #[test]
 fn query_with_the_wrong_primitives_is_an_error() {
-    let a: Vec<_> = (0..10).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
+    let a: Vec<_> = (0..10)
+        .map(|i| tri_at(Vec3::splat(i as f32), 1.0))
+        .collect();
     let (nodes, idx, _) = build::<Aabb, _>(&TopDown::sah(), &a).unwrap();
     let t = open(&nodes, &idx, &a);
-    let err = t.overlapping(&a[..5], &Aabb::new(Vec3::ZERO, Vec3::ONE), |_| {}).unwrap_err();
+    let err = t
+        .overlapping(&a[..5], &Aabb::new(Vec3::ZERO, Vec3::ONE), |_| {})
+        .unwrap_err();
     assert_eq!(err, Error::PrimitiveCountMismatch { tree: 10, given: 5 });
     let mut seen = vec![0u32; 4];
     assert!(Bvh::from_parts(&nodes, &idx, &a[..5], &mut seen).is_err());

@@ -44,12 +44,20 @@ pub const PRESETS: [Preset; 15] = [
     Preset {
         name: "sah-8bins",
         summary: "surface area heuristic, 8 bins on x/y/z",
-        builder: with(Partition::SurfaceArea, AxisChoice::BestOfXyz, SplitPoint::Bins(8)),
+        builder: with(
+            Partition::SurfaceArea,
+            AxisChoice::BestOfXyz,
+            SplitPoint::Bins(8),
+        ),
     },
     Preset {
         name: "sah-longest",
         summary: "surface area heuristic, 16 bins on the longest axis only (fastest SAH)",
-        builder: with(Partition::SurfaceArea, AxisChoice::Longest, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::SurfaceArea,
+            AxisChoice::Longest,
+            SplitPoint::Bins(16),
+        ),
     },
     Preset {
         name: "median",
@@ -59,37 +67,65 @@ pub const PRESETS: [Preset; 15] = [
     Preset {
         name: "spatial-median",
         summary: "middle of the longest axis",
-        builder: with(Partition::Balance, AxisChoice::Longest, SplitPoint::SpatialMedian),
+        builder: with(
+            Partition::Balance,
+            AxisChoice::Longest,
+            SplitPoint::SpatialMedian,
+        ),
     },
     Preset {
         name: "mean-variance",
         summary: "centroid mean along the direction of greatest variance",
-        builder: with(Partition::Balance, AxisChoice::Variance, SplitPoint::ObjectMean),
+        builder: with(
+            Partition::Balance,
+            AxisChoice::Variance,
+            SplitPoint::ObjectMean,
+        ),
     },
     Preset {
         name: "distant-points",
         summary: "median along the line through the two most distant centroids",
-        builder: with(Partition::Balance, AxisChoice::DistantPoints, SplitPoint::ObjectMedian),
+        builder: with(
+            Partition::Balance,
+            AxisChoice::DistantPoints,
+            SplitPoint::ObjectMedian,
+        ),
     },
     Preset {
         name: "min-volume",
         summary: "minimise the sum of child volumes, 16 bins on x/y/z",
-        builder: with(Partition::Volume, AxisChoice::BestOfXyz, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::Volume,
+            AxisChoice::BestOfXyz,
+            SplitPoint::Bins(16),
+        ),
     },
     Preset {
         name: "min-larger",
         summary: "minimise the larger child volume, 16 bins on x/y/z",
-        builder: with(Partition::LargerChild, AxisChoice::BestOfXyz, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::LargerChild,
+            AxisChoice::BestOfXyz,
+            SplitPoint::Bins(16),
+        ),
     },
     Preset {
         name: "min-overlap",
         summary: "minimise the children's overlap, 16 bins on x/y/z",
-        builder: with(Partition::Overlap, AxisChoice::BestOfXyz, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::Overlap,
+            AxisChoice::BestOfXyz,
+            SplitPoint::Bins(16),
+        ),
     },
     Preset {
         name: "max-separation",
         summary: "maximise the gap between children, 16 bins on x/y/z",
-        builder: with(Partition::Separation, AxisChoice::BestOfXyz, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::Separation,
+            AxisChoice::BestOfXyz,
+            SplitPoint::Bins(16),
+        ),
     },
     Preset {
         name: "weighted",
@@ -111,12 +147,19 @@ pub const PRESETS: [Preset; 15] = [
         builder: with(
             Partition::SurfaceArea,
             AxisChoice::BestOfXyz,
-            SplitPoint::RandomCentroids { count: 16, seed: 42 },
+            SplitPoint::RandomCentroids {
+                count: 16,
+                seed: 42,
+            },
         ),
     },
     Preset {
         name: "parent-axes",
         summary: "SAH, 16 bins along the node volume's own axes",
-        builder: with(Partition::SurfaceArea, AxisChoice::ParentVolume, SplitPoint::Bins(16)),
+        builder: with(
+            Partition::SurfaceArea,
+            AxisChoice::ParentVolume,
+            SplitPoint::Bins(16),
+        ),
     },
 ];

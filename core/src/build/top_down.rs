@@ -15,9 +15,9 @@
 //! other combination goes through the general evaluator.
 
 use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
+use crate::bv::BoxSet;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
-use crate::bv::BoxSet;
 use crate::tree::{max_nodes, Bvh, Node, MAX_DEPTH};
 use crate::Error;
 use glam::{DMat3, DVec3, Vec3};
@@ -203,17 +203,23 @@ impl TopDown {
             return Err(Error::InvalidConfig("max_leaf_size must be at least 1"));
         }
         if self.stop.max_depth as usize > MAX_DEPTH {
-            return Err(Error::InvalidConfig("max_depth must be at most MAX_DEPTH (64)"));
+            return Err(Error::InvalidConfig(
+                "max_depth must be at most MAX_DEPTH (64)",
+            ));
         }
-        if !(self.stop.min_volume >= 0.0) {
-            return Err(Error::InvalidConfig("min_volume must be a non-negative number"));
+        if self.stop.min_volume.is_nan() || self.stop.min_volume < 0.0 {
+            return Err(Error::InvalidConfig(
+                "min_volume must be a non-negative number",
+            ));
         }
         match self.split {
             SplitPoint::Bins(k) if !(2..=MAX_BINS as u8).contains(&k) => {
                 return Err(Error::InvalidConfig("bin count must be in 2..=MAX_BINS"))
             }
             SplitPoint::RandomCentroids { count, .. } if !(1..MAX_BINS as u8).contains(&count) => {
-                return Err(Error::InvalidConfig("random candidate count must be in 1..MAX_BINS"))
+                return Err(Error::InvalidConfig(
+                    "random candidate count must be in 1..MAX_BINS",
+                ))
             }
             SplitPoint::Sweep if self.partition != Partition::SurfaceArea => {
                 return Err(Error::InvalidConfig(
@@ -233,7 +239,9 @@ impl TopDown {
                 .iter()
                 .all(|w| w.is_finite() && *w >= 0.0)
             {
-                return Err(Error::InvalidConfig("weights must be finite and non-negative"));
+                return Err(Error::InvalidConfig(
+                    "weights must be finite and non-negative",
+                ));
             }
         }
         Ok(())
@@ -321,7 +329,12 @@ impl TopDown {
     }
 
     /// Shared input checks; returns n.
-    fn prepare<P: Primitive>(&self, prims: &[P], nodes: usize, indices: usize) -> Result<usize, Error> {
+    fn prepare<P: Primitive>(
+        &self,
+        prims: &[P],
+        nodes: usize,
+        indices: usize,
+    ) -> Result<usize, Error> {
         self.check()?;
         validate(prims)?;
         let n = prims.len();
@@ -524,7 +537,10 @@ impl Norm {
     }
     #[inline]
     fn apply(&self, b: &Aabb) -> Aabb {
-        Aabb::new((b.min - self.origin) * self.inv, (b.max - self.origin) * self.inv)
+        Aabb::new(
+            (b.min - self.origin) * self.inv,
+            (b.max - self.origin) * self.inv,
+        )
     }
     #[inline]
     fn half_area(&self, b: &Aabb) -> f32 {
@@ -698,8 +714,11 @@ fn plan<S: Source, B: BoundingVolume>(
     partition: Partition,
     norm: &Norm,
 ) -> Option<Plan> {
-    if let (SplitPoint::Bins(k), AxisChoice::BestOfXyz | AxisChoice::Longest, Partition::SurfaceArea) =
-        (split, axis, partition)
+    if let (
+        SplitPoint::Bins(k),
+        AxisChoice::BestOfXyz | AxisChoice::Longest,
+        Partition::SurfaceArea,
+    ) = (split, axis, partition)
     {
         let mut axes = [true; 3];
         if axis == AxisChoice::Longest {
@@ -726,16 +745,26 @@ fn plan<S: Source, B: BoundingVolume>(
     for &dir in dirs.as_slice() {
         let t = |i: S::Item| dir.dot(src.centroid(i));
         let (lo, hi) = projection_range(range, &t, dir, &task.centroids);
-        if !(hi > lo) {
+        if hi.partial_cmp(&lo) != Some(core::cmp::Ordering::Greater) {
             continue; // every centroid projects to one point: nothing to split
         }
         match split {
             SplitPoint::ObjectMedian => {
                 let mid = range.len() / 2;
-                range.select_nth_unstable_by(mid, |&a, &b| t(a).total_cmp(&t(b)).then(src.id(a).cmp(&src.id(b))));
+                range.select_nth_unstable_by(mid, |&a, &b| {
+                    t(a).total_cmp(&t(b)).then(src.id(a).cmp(&src.id(b)))
+                });
                 let (l, _) = bounds_of(src, &range[..mid]);
                 let (r, _) = bounds_of(src, &range[mid..]);
-                let c = cost::<B>(partition, norm, &task.bounds, &l, mid as u32, &r, (range.len() - mid) as u32);
+                let c = cost::<B>(
+                    partition,
+                    norm,
+                    &task.bounds,
+                    &l,
+                    mid as u32,
+                    &r,
+                    (range.len() - mid) as u32,
+                );
                 consider(c, Plan::Order { dir, mid });
             }
             SplitPoint::Sweep => {
@@ -752,11 +781,13 @@ fn plan<S: Source, B: BoundingVolume>(
                     },
                     SplitPoint::SpatialMedian => planes(&[lo * 0.5 + hi * 0.5]),
                     SplitPoint::ObjectMean => {
-                        let mean = range.iter().map(|&i| t(i) as f64).sum::<f64>() / range.len() as f64;
+                        let mean =
+                            range.iter().map(|&i| t(i) as f64).sum::<f64>() / range.len() as f64;
                         planes(&[mean as f32])
                     }
                     SplitPoint::RandomCentroids { count, seed } => {
-                        let mut rng = SplitMix(seed ^ (task.node as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+                        let mut rng =
+                            SplitMix(seed ^ (task.node as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
                         let mut p = [0.0f32; MAX_BINS];
                         let m = (count as usize).min(MAX_BINS);
                         for slot in p.iter_mut().take(m) {
@@ -766,7 +797,9 @@ fn plan<S: Source, B: BoundingVolume>(
                     }
                     SplitPoint::ObjectMedian | SplitPoint::Sweep => unreachable_plan(),
                 };
-                if let Some((c, boundary)) = evaluate_bins::<S, B>(src, range, &t, &binning, partition, norm, task) {
+                if let Some((c, boundary)) =
+                    evaluate_bins::<S, B>(src, range, &t, &binning, partition, norm, task)
+                {
                     consider(
                         c,
                         Plan::Plane {
@@ -806,7 +839,12 @@ fn planes(values: &[f32]) -> Binning {
     Binning::Planes { planes: p, m: k }
 }
 
-fn projection_range<T: Copy>(range: &[T], t: &impl Fn(T) -> f32, dir: Vec3, centroids: &Aabb) -> (f32, f32) {
+fn projection_range<T: Copy>(
+    range: &[T],
+    t: &impl Fn(T) -> f32,
+    dir: Vec3,
+    centroids: &Aabb,
+) -> (f32, f32) {
     for k in 0..3 {
         if dir == crate::bv::Axes::XYZ.axes[k] {
             return (centroids.min[k], centroids.max[k]);
@@ -884,7 +922,11 @@ fn plan_binned_sah<S: Source, const N: usize>(
     let ext = c.extent();
     let mut scale = [0.0f32; 3];
     for a in 0..3 {
-        scale[a] = if ext[a] > 0.0 && axes[a] { k as f32 / ext[a] } else { 0.0 };
+        scale[a] = if ext[a] > 0.0 && axes[a] {
+            k as f32 / ext[a]
+        } else {
+            0.0
+        };
     }
     if axes != [true; 3] {
         // One axis: bin only along it.
@@ -1030,7 +1072,9 @@ fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Halves {
         } => partition_by(src, range, |c| binning.bin(dir.dot(c)) < boundary),
         Plan::Order { dir, mid } => {
             let t = |i: S::Item| dir.dot(src.centroid(i));
-            range.select_nth_unstable_by(mid, |&a, &b| t(a).total_cmp(&t(b)).then(src.id(a).cmp(&src.id(b))));
+            range.select_nth_unstable_by(mid, |&a, &b| {
+                t(a).total_cmp(&t(b)).then(src.id(a).cmp(&src.id(b)))
+            });
             let (lb, lc) = bounds_of(src, &range[..mid]);
             let (rb, rc) = bounds_of(src, &range[mid..]);
             Halves {
@@ -1044,7 +1088,11 @@ fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Halves {
 
 /// In-place two-pointer partition; every element is classified exactly once
 /// and its bounds added to its side.
-fn partition_by<S: Source>(src: &S, range: &mut [S::Item], goes_left: impl Fn(Vec3) -> bool) -> Halves {
+fn partition_by<S: Source>(
+    src: &S,
+    range: &mut [S::Item],
+    goes_left: impl Fn(Vec3) -> bool,
+) -> Halves {
     let mut bounds = [Aabb::EMPTY; 2];
     let mut centroids = [Aabb::EMPTY; 2];
     let (mut i, mut j) = (0, range.len());
@@ -1084,7 +1132,11 @@ fn refit_to_contain_children<B: BoundingVolume>(nodes: &mut [Node<B>]) {
             }
             let enlarged = bv.merge(&lb).merge(&rb);
             let merged = lb.merge(&rb);
-            let mut pick = if merged.volume() < enlarged.volume() { merged } else { enlarged };
+            let mut pick = if merged.volume() < enlarged.volume() {
+                merged
+            } else {
+                enlarged
+            };
             // Merges are conservative but a rounding step may still leave a hair
             // outside; fall back to merging again until containment holds.
             for _ in 0..4 {

@@ -17,6 +17,7 @@ use glam::{DMat3, DVec3};
 /// assert_eq!(values, DVec3::new(3.0, 2.0, 1.0));
 /// assert_eq!(vectors.x_axis.abs(), DVec3::Y);
 /// ```
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the maths
 pub fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
     let mut a = m.to_cols_array_2d(); // a[col][row]; symmetric, so a[i][j] == a[j][i]
     let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];

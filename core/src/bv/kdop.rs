@@ -184,7 +184,8 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
     }
 
     fn contains(&self, other: &Self) -> bool {
-        other.is_empty() || (0..K).all(|i| self.min[i] <= other.min[i] && other.max[i] <= self.max[i])
+        other.is_empty()
+            || (0..K).all(|i| self.min[i] <= other.min[i] && other.max[i] <= self.max[i])
     }
 
     fn volume(&self) -> f32 {

@@ -226,7 +226,11 @@ impl BoundingVolume for Obb {
         let rotated = Obb {
             center,
             axes,
-            half_extents: Vec3::new(round::up(e.x * pad), round::up(e.y * pad), round::up(e.z * pad)),
+            half_extents: Vec3::new(
+                round::up(e.x * pad),
+                round::up(e.y * pad),
+                round::up(e.z * pad),
+            ),
         };
         let aligned = Obb::from_aabb(union);
         if rotated.volume() < aligned.volume() * 0.999
@@ -314,7 +318,10 @@ impl BoundingVolume for Obb {
         let corners = self.corners64();
         for k in 0..3 {
             let lo = corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-            let hi = corners.iter().map(|c| c[k]).fold(f64::NEG_INFINITY, f64::max);
+            let hi = corners
+                .iter()
+                .map(|c| c[k])
+                .fold(f64::NEG_INFINITY, f64::max);
             let pad = (hi - lo).abs() * 4.0 * f64::EPSILON + hi.abs().max(lo.abs()) * f64::EPSILON;
             b.min[k] = round::down(lo - pad);
             b.max[k] = round::up(hi + pad);

@@ -51,11 +51,7 @@ impl Shuffle {
         while gcd(a, n) != 1 {
             a = (a + 1) % n;
         }
-        Shuffle {
-            n,
-            a,
-            b: seed % n,
-        }
+        Shuffle { n, a, b: seed % n }
     }
     #[inline]
     fn at(&self, i: usize) -> usize {
@@ -357,7 +353,10 @@ impl BoundingVolume for Sphere {
                 }
             }
         }
-        let mut s = S64 { c: ball(0).0, r: ball(0).1 };
+        let mut s = S64 {
+            c: ball(0).0,
+            r: ball(0).1,
+        };
         let mut widest = -1.0;
         for k in 0..3 {
             let (a, b) = (ball(lo[k]), ball(hi[k]));
@@ -458,11 +457,7 @@ impl BoundingVolume for Sphere {
     fn contains_aabb(&self, aabb: &Aabb) -> bool {
         // The farthest corner decides.
         let c = self.center;
-        let far = Vec3::select(
-            (c - aabb.min).cmpgt(aabb.max - c),
-            aabb.min,
-            aabb.max,
-        );
+        let far = Vec3::select((c - aabb.min).cmpgt(aabb.max - c), aabb.min, aabb.max);
         self.contains_point(far)
     }
 

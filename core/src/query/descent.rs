@@ -47,7 +47,12 @@ impl Descent {
     /// Which sides to open for a pair where at least one node is internal:
     /// `(open_a, open_b)`. A leaf is never opened.
     #[inline]
-    pub(crate) fn choose<B: BoundingVolume>(self, a: &Node<B>, b: &Node<B>, depth: u32) -> (bool, bool) {
+    pub(crate) fn choose<B: BoundingVolume>(
+        self,
+        a: &Node<B>,
+        b: &Node<B>,
+        depth: u32,
+    ) -> (bool, bool) {
         let (la, lb) = (a.is_leaf(), b.is_leaf());
         if la {
             return (false, true);

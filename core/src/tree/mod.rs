@@ -197,7 +197,11 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
 
     /// Scratch words [`validate`](Self::validate) needs: one bit per node or primitive.
     pub const fn seen_words(nodes: usize, primitives: usize) -> usize {
-        let n = if nodes > primitives { nodes } else { primitives };
+        let n = if nodes > primitives {
+            nodes
+        } else {
+            primitives
+        };
         n.div_ceil(32)
     }
 

@@ -30,7 +30,9 @@ pub(super) fn structure<B: BoundingVolume>(
     }
     let words = Bvh::<B>::seen_words(nodes.len(), prim_count);
     if seen.len() < words {
-        return Err(Error::InvalidConfig("validation scratch smaller than Bvh::seen_words"));
+        return Err(Error::InvalidConfig(
+            "validation scratch smaller than Bvh::seen_words",
+        ));
     }
     let seen = &mut seen[..words];
     seen.fill(0);
@@ -57,7 +59,9 @@ pub(super) fn structure<B: BoundingVolume>(
             }
             Some((l, r)) => {
                 if l <= i || r as usize >= nodes.len() {
-                    return Err(Error::InvalidTree("child index out of range or not after its parent"));
+                    return Err(Error::InvalidTree(
+                        "child index out of range or not after its parent",
+                    ));
                 }
                 if d as usize >= MAX_DEPTH || top + 2 > stack.len() {
                     return Err(Error::InvalidTree("deeper than MAX_DEPTH"));
@@ -73,10 +77,14 @@ pub(super) fn structure<B: BoundingVolume>(
         }
     }
     if visited != nodes.len() {
-        return Err(Error::InvalidTree("some nodes are not reachable from the root"));
+        return Err(Error::InvalidTree(
+            "some nodes are not reachable from the root",
+        ));
     }
     if leaf_slots != indices.len() {
-        return Err(Error::InvalidTree("leaves do not cover the index array exactly"));
+        return Err(Error::InvalidTree(
+            "leaves do not cover the index array exactly",
+        ));
     }
     // Each primitive exactly once.
     seen.fill(0);
@@ -100,7 +108,8 @@ pub(super) fn containment<B: BoundingVolume, P: Primitive>(
         match node.children() {
             Some((l, r)) => {
                 let nodes = bvh.nodes();
-                if !node.bv.contains(&nodes[l as usize].bv) || !node.bv.contains(&nodes[r as usize].bv)
+                if !node.bv.contains(&nodes[l as usize].bv)
+                    || !node.bv.contains(&nodes[r as usize].bv)
                 {
                     return Err(Error::InvalidTree("a node does not contain its children"));
                 }
@@ -108,7 +117,9 @@ pub(super) fn containment<B: BoundingVolume, P: Primitive>(
             None => {
                 for &p in bvh.leaf_primitives(node) {
                     if !node.bv.contains_aabb(&prims[p as usize].bounds()) {
-                        return Err(Error::InvalidTree("a leaf does not contain its primitive's bounds"));
+                        return Err(Error::InvalidTree(
+                            "a leaf does not contain its primitive's bounds",
+                        ));
                     }
                 }
             }

@@ -6,7 +6,11 @@ use std::io::Write;
 use std::process::ExitCode;
 
 #[derive(Parser, Debug)]
-#[command(name = "bvhkit", version, about = "Bounding volume hierarchies: build, measure, verify.")]
+#[command(
+    name = "bvhkit",
+    version,
+    about = "Bounding volume hierarchies: build, measure, verify."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
