@@ -5,7 +5,8 @@
 //! Before the timings it prints the SAH cost of each tree, computed with the
 //! same formula (C_t = C_i = 1, AABB areas, relative to the root).
 
-use bvhkit::{Aabb, Node, Primitive, TopDown, Triangle};
+use bvhkit::build::PrimitiveRef;
+use bvhkit::{Aabb, AxisChoice, Node, Primitive, TopDown, Triangle};
 use bvhkit_std::scene;
 use criterion::{criterion_group, criterion_main, Criterion};
 use parry3d::bounding_volume::Aabb as PAabb;
@@ -89,21 +90,28 @@ fn bench(c: &mut Criterion) {
             ))
         })
     });
+    let longest = TopDown {
+        axis: AxisChoice::Longest,
+        ..TopDown::sah()
+    };
     for (name, cfg) in [
         ("bvhkit-sah-leaf1", TopDown::sah().with_max_leaf_size(1)),
         ("bvhkit-sah-leaf4", TopDown::sah()),
-        (
-            "bvhkit-sah8-leaf1",
-            TopDown {
-                split: bvhkit::SplitPoint::Bins(8),
-                ..TopDown::sah()
-            }
-            .with_max_leaf_size(1),
-        ),
+        ("bvhkit-sah-longest-leaf1", longest.with_max_leaf_size(1)),
+        ("bvhkit-sah-longest-leaf4", longest),
     ] {
         let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
         let mut idx = vec![0u32; tris.len()];
-        g.bench_function(name, |b| {
+        let mut cache = vec![PrimitiveRef::EMPTY; tris.len()];
+        g.bench_function(format!("{name}-cached"), |b| {
+            b.iter(|| {
+                let t = cfg
+                    .build_cached(black_box(&tris), &mut nodes, &mut idx, &mut cache)
+                    .unwrap();
+                black_box(t.node_count())
+            })
+        });
+        g.bench_function(format!("{name}-indexed"), |b| {
             b.iter(|| {
                 let t = cfg.build(black_box(&tris), &mut nodes, &mut idx).unwrap();
                 black_box(t.node_count())

@@ -6,6 +6,21 @@ use crate::tree::Node;
 /// The rule a two-tree traversal uses to pick which node to open next.
 /// Every rule finds the same pairs; they differ in how many volume tests
 /// (`Nv` in the cost function) they spend getting there.
+///
+/// ```
+/// use bvhkit::{overlapping_pairs, Aabb, Descent, Node, TopDown, Triangle};
+/// use glam::Vec3;
+/// let a: Vec<Triangle> = (0..32).map(|i| {
+///     let o = Vec3::new(i as f32, 0.0, 0.0);
+///     Triangle::new(o, o + Vec3::new(1.5, 0.0, 0.0), o + Vec3::new(0.0, 1.0, 1.0))
+/// }).collect();
+/// let mut nodes = [Node::<Aabb>::EMPTY; bvhkit::max_nodes(32)];
+/// let mut idx = [0u32; 32];
+/// let t = TopDown::default().with_max_leaf_size(1).build(&a, &mut nodes, &mut idx)?;
+/// let counts = Descent::ALL.map(|rule| overlapping_pairs(&t, &a, &t, &a, rule, |_, _| {}));
+/// assert!(counts.iter().all(|c| *c == counts[0])); // same answer, different work
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Descent {
     /// Descend A to its leaves before touching B. Cheap decisions, but costly
