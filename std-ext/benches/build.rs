@@ -48,31 +48,36 @@ fn report_quality(tris: &[Triangle]) {
     let p = Bvh::from_leaves(BvhBuildStrategy::Binned, &aabbs);
     eprintln!("SAH cost, {} triangles:", tris.len());
     eprintln!("  parry3d binned (1 per leaf)  {:.3}", parry_sah(&p));
+    let preset = |name: &str| {
+        bvhkit::build::PRESETS
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.builder)
+            .unwrap_or_else(|| panic!("no preset {name}"))
+    };
     for (name, cfg) in [
+        ("sah (1 per leaf)", preset("sah").with_max_leaf_size(1)),
+        ("sah (4 per leaf)", preset("sah")),
         (
-            "bvhkit sah (1 per leaf)",
-            TopDown::sah().with_max_leaf_size(1),
-        ),
-        ("bvhkit sah (4 per leaf)", TopDown::sah()),
-        (
-            "bvhkit sah-8bins (1 per leaf)",
-            TopDown {
-                split: bvhkit::SplitPoint::Bins(8),
-                ..TopDown::sah()
-            }
-            .with_max_leaf_size(1),
+            "sah-8bins (1 per leaf)",
+            preset("sah-8bins").with_max_leaf_size(1),
         ),
         (
-            "bvhkit spatial-median (1 per leaf)",
-            bvhkit::build::PRESETS[4].builder.with_max_leaf_size(1),
+            "sah-longest (1 per leaf)",
+            preset("sah-longest").with_max_leaf_size(1),
+        ),
+        ("sah-longest (4 per leaf)", preset("sah-longest")),
+        (
+            "spatial-median (1 per leaf)",
+            preset("spatial-median").with_max_leaf_size(1),
         ),
         (
-            "bvhkit sah-sweep (1 per leaf)",
-            TopDown::sah_sweep().with_max_leaf_size(1),
+            "sah-sweep (1 per leaf)",
+            preset("sah-sweep").with_max_leaf_size(1),
         ),
     ] {
         let t = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, tris).unwrap();
-        eprintln!("  {name:<30} {:.3}", t.view().stats().sah_cost);
+        eprintln!("  bvhkit {name:<30} {:.3}", t.view().stats().sah_cost);
     }
 }
 

@@ -69,7 +69,13 @@ impl Obb {
                 ax[2].dot(v).abs(),
             ));
         }
-        let pad = 1.0 + 8.0 * f64::EPSILON;
+        Obb::with_extents(center, axes, e)
+    }
+
+    /// A box from exact `f64` half extents, padded for the `f64` rounding of
+    /// the projections and rounded up to `f32`.
+    fn with_extents(center: Vec3, axes: [Vec3; 3], e: DVec3) -> Obb {
+        let pad = 1.0 + 16.0 * f64::EPSILON;
         Obb {
             center,
             axes,
@@ -222,16 +228,7 @@ impl BoundingVolume for Obb {
                 e[k] = e[k].max(t[k].0.abs() + t[k].1);
             }
         }
-        let pad = 1.0 + 16.0 * f64::EPSILON;
-        let rotated = Obb {
-            center,
-            axes,
-            half_extents: Vec3::new(
-                round::up(e.x * pad),
-                round::up(e.y * pad),
-                round::up(e.z * pad),
-            ),
-        };
+        let rotated = Obb::with_extents(center, axes, e);
         let aligned = Obb::from_aabb(union);
         if rotated.volume() < aligned.volume() * 0.999
             || (aligned.volume() == 0.0 && rotated.surface_area() < aligned.surface_area())

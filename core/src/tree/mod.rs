@@ -11,7 +11,7 @@
 
 mod validate;
 
-use crate::bv::{BoundingVolume, BoxSet};
+use crate::bv::BoundingVolume;
 use crate::primitive::Primitive;
 use crate::Error;
 
@@ -211,23 +211,5 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     pub fn validate<P: Primitive>(&self, prims: &[P], seen: &mut [u32]) -> Result<(), Error> {
         validate::structure(self.nodes, self.indices, prims.len(), seen)?;
         validate::containment(self, prims)
-    }
-}
-
-/// The bounds of the primitives named by an index range, as a [`BoxSet`].
-#[derive(Clone, Copy, Debug)]
-pub struct IndexedBoxes<'a, P> {
-    /// All primitives.
-    pub prims: &'a [P],
-    /// Which of them.
-    pub indices: &'a [u32],
-}
-
-impl<P: Primitive> BoxSet for IndexedBoxes<'_, P> {
-    fn len(&self) -> usize {
-        self.indices.len()
-    }
-    fn aabb(&self, i: usize) -> crate::Aabb {
-        self.prims[self.indices[i] as usize].bounds()
     }
 }
