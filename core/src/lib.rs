@@ -55,7 +55,7 @@ pub use bv::{
 };
 pub use error::Error;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
-pub use query::{brute_force, overlapping_pairs, Collector, Descent};
+pub use query::{brute_force, overlapping_pairs, Collector, Descent, Region};
 pub use stats::TreeStats;
 pub use tree::{max_nodes, Bvh, Node, MAX_DEPTH};
 

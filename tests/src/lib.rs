@@ -201,6 +201,20 @@ pub fn check_against_brute_force<B: BoundingVolume>(
     prop_assert_eq!(n, got.len());
     prop_assert_eq!(&got, &want, "region query, {} {:?}", B::NAME, cfg);
 
+    // Non-box regions: a sphere and a slanted 14-DOP derived from the box.
+    let ball = bvhkit::Sphere::new(region.center(), region.extent().length() * 0.35);
+    let slab = bvhkit::Dop14::fit(&[
+        region.min,
+        region.max,
+        Vec3::new(region.min.x, region.max.y, region.min.z),
+    ]);
+    for (name, got, want) in [
+        ("sphere", query(&ta, a, &ball), reference(a, &ball)),
+        ("14-dop", query(&ta, a, &slab), reference(a, &slab)),
+    ] {
+        prop_assert_eq!(got, want, "{} region, {} tree {:?}", name, B::NAME, cfg);
+    }
+
     let mut want = Vec::new();
     brute_force::pairs(a, b, |i, j| want.push((i, j)));
     for rule in Descent::ALL {
@@ -211,4 +225,18 @@ pub fn check_against_brute_force<B: BoundingVolume>(
         prop_assert_eq!(&got, &want, "pairs, {} {:?} {:?}", B::NAME, rule, cfg);
     }
     Ok(())
+}
+
+fn query<B: BoundingVolume, R: bvhkit::Region>(t: &Bvh<B>, prims: &[Triangle], r: &R) -> Vec<u32> {
+    let mut got = Vec::new();
+    let n = t.overlapping(prims, r, |i| got.push(i)).unwrap();
+    assert_eq!(n, got.len());
+    got.sort_unstable();
+    got
+}
+
+fn reference<R: BoundingVolume>(prims: &[Triangle], r: &R) -> Vec<u32> {
+    let mut want = Vec::new();
+    brute_force::overlapping(prims, r, |i| want.push(i));
+    want
 }

@@ -3,10 +3,10 @@
 //! `O(n)` for a region, `O(n * m)` for pairs: too slow for real scenes, exactly
 //! right for checking every hierarchy against.
 
-use crate::bv::Aabb;
+use crate::bv::BoundingVolume;
 use crate::primitive::Primitive;
 
-/// Every primitive whose bounds overlap `region`; returns the count.
+/// Every primitive whose bounds overlap `region` (by `region.overlaps_aabb`); returns the count.
 ///
 /// ```
 /// use bvhkit::{brute_force, Aabb};
@@ -15,10 +15,14 @@ use crate::primitive::Primitive;
 /// let n = brute_force::overlapping(&pts, &Aabb::new(Vec3::splat(-1.0), Vec3::ONE), |_| {});
 /// assert_eq!(n, 1);
 /// ```
-pub fn overlapping<P: Primitive>(prims: &[P], region: &Aabb, mut f: impl FnMut(u32)) -> usize {
+pub fn overlapping<P: Primitive, R: BoundingVolume>(
+    prims: &[P],
+    region: &R,
+    mut f: impl FnMut(u32),
+) -> usize {
     let mut found = 0;
     for (i, p) in prims.iter().enumerate() {
-        if p.bounds().overlaps(region) {
+        if region.overlaps_aabb(&p.bounds()) {
             f(i as u32);
             found += 1;
         }

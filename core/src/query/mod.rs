@@ -19,3 +19,4 @@ mod single;
 pub use collect::Collector;
 pub use descent::Descent;
 pub use pair::overlapping_pairs;
+pub use single::Region;
