@@ -8,6 +8,18 @@ use bvhkit::{
 };
 use proptest::prelude::*;
 
+/// Property-test settings: `default_cases` cases, or `PROPTEST_CASES` when set
+/// (for long local runs).
+pub fn proptest_config(default_cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default_cases),
+        ..ProptestConfig::default()
+    }
+}
+
 /// Every partition criterion.
 pub const PARTITIONS: [Partition; 7] = [
     Partition::Balance,

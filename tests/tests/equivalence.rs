@@ -7,13 +7,7 @@ use bvhkit_tests::*;
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
-    ProptestConfig {
-        cases: std::env::var("PROPTEST_CASES")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(48),
-        ..ProptestConfig::default()
-    }
+    proptest_config(48)
 }
 
 proptest! {

@@ -4,16 +4,11 @@
 
 use bvhkit::glam::Vec3;
 use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, Sphere};
+use bvhkit_tests::proptest_config;
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
-    ProptestConfig {
-        cases: std::env::var("PROPTEST_CASES")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(128),
-        ..ProptestConfig::default()
-    }
+    proptest_config(128)
 }
 
 /// Point sets: general, collinear, coplanar, one point, clustered; then moved far away.
