@@ -513,8 +513,9 @@ fn bounds_of<S: Source>(src: &S, idx: &[S::Item]) -> (Aabb, Aabb) {
     let mut b = Aabb::EMPTY;
     let mut c = Aabb::EMPTY;
     for &i in idx {
-        b = b.union(&src.bounds(i));
-        c.grow(src.centroid(i));
+        let bounds = src.bounds(i);
+        b = b.union(&bounds);
+        c.grow(bounds.center());
     }
     (b, c)
 }
@@ -651,7 +652,7 @@ fn principal_direction<S: Source>(src: &S, range: &[S::Item]) -> Vec3 {
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     let mut mean = DVec3::ZERO;
     for &i in range {
-        let c = src.centroid(i).as_dvec3();
+        let c = centroid(src, i).as_dvec3();
         mean += c;
         lo = lo.min(c);
         hi = hi.max(c);
@@ -660,7 +661,7 @@ fn principal_direction<S: Source>(src: &S, range: &[S::Item]) -> Vec3 {
     let scale = 1.0 / (hi - lo).max_element().max(f64::MIN_POSITIVE);
     let mut cov = DMat3::ZERO;
     for &i in range {
-        let v = (src.centroid(i).as_dvec3() - mean) * scale;
+        let v = (centroid(src, i).as_dvec3() - mean) * scale;
         cov += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
     }
     let (_, vecs) = crate::bv::symmetric_eigen(cov);
@@ -674,7 +675,7 @@ fn principal_direction<S: Source>(src: &S, range: &[S::Item]) -> Vec3 {
 
 /// Direction through the most distant pair among the six axis-extreme centroids.
 fn distant_direction<S: Source>(src: &S, range: &[S::Item]) -> Vec3 {
-    let c = |i: S::Item| src.centroid(i);
+    let c = |i: S::Item| centroid(src, i);
     let mut lo = [range[0]; 3];
     let mut hi = [range[0]; 3];
     for &i in range {
@@ -743,7 +744,7 @@ fn plan<S: Source, B: BoundingVolume>(
         }
     };
     for &dir in dirs.as_slice() {
-        let t = |i: S::Item| dir.dot(src.centroid(i));
+        let t = |i: S::Item| dir.dot(centroid(src, i));
         let (lo, hi) = projection_range(range, &t, dir, &task.centroids);
         if hi.partial_cmp(&lo) != Some(core::cmp::Ordering::Greater) {
             continue; // every centroid projects to one point: nothing to split
@@ -795,7 +796,8 @@ fn plan<S: Source, B: BoundingVolume>(
                         }
                         planes(&p[..m])
                     }
-                    SplitPoint::ObjectMedian | SplitPoint::Sweep => unreachable_plan(),
+                    // Handled by the arms above.
+                    SplitPoint::ObjectMedian | SplitPoint::Sweep => continue,
                 };
                 if let Some((c, boundary)) =
                     evaluate_bins::<S, B>(src, range, &t, &binning, partition, norm, task)
@@ -813,14 +815,6 @@ fn plan<S: Source, B: BoundingVolume>(
         }
     }
     best.map(|(_, p)| p)
-}
-
-/// A binning that never matches (kept total instead of panicking).
-fn unreachable_plan() -> Binning {
-    Binning::Planes {
-        planes: [0.0; MAX_BINS],
-        m: 0,
-    }
 }
 
 fn planes(values: &[f32]) -> Binning {
@@ -936,8 +930,9 @@ fn plan_binned_sah<S: Source, const N: usize>(
         }
         let mut bins = [EMPTY_BIN; N];
         for &i in range {
-            let bin = &mut bins[even_bin(src.centroid(i)[a], c.min[a], scale[a], k)];
-            bin.bounds = bin.bounds.union(&src.bounds(i));
+            let b = src.bounds(i);
+            let bin = &mut bins[even_bin(b.center()[a], c.min[a], scale[a], k)];
+            bin.bounds = bin.bounds.union(&b);
             bin.count += 1;
         }
         return best_boundary(&bins[..k], range.len(), norm).map(|(_, boundary)| Plan::Axis {
@@ -951,7 +946,7 @@ fn plan_binned_sah<S: Source, const N: usize>(
     let mut bins = [[EMPTY_BIN; N]; 3];
     for &i in range {
         let b = src.bounds(i);
-        let ctr = src.centroid(i);
+        let ctr = b.center();
         for a in 0..3 {
             let bin = &mut bins[a][even_bin(ctr[a], c.min[a], scale[a], k)];
             bin.bounds = bin.bounds.union(&b);
@@ -1071,7 +1066,7 @@ fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Halves {
             boundary,
         } => partition_by(src, range, |c| binning.bin(dir.dot(c)) < boundary),
         Plan::Order { dir, mid } => {
-            let t = |i: S::Item| dir.dot(src.centroid(i));
+            let t = |i: S::Item| dir.dot(centroid(src, i));
             range.select_nth_unstable_by(mid, |&a, &b| {
                 t(a).total_cmp(&t(b)).then(src.id(a).cmp(&src.id(b)))
             });
@@ -1098,7 +1093,8 @@ fn partition_by<S: Source>(
     let (mut i, mut j) = (0, range.len());
     while i < j {
         let item = range[i];
-        let c = src.centroid(item);
+        let b = src.bounds(item);
+        let c = b.center();
         let side = if goes_left(c) {
             i += 1;
             0
@@ -1107,7 +1103,7 @@ fn partition_by<S: Source>(
             range.swap(i, j);
             1
         };
-        bounds[side] = bounds[side].union(&src.bounds(item));
+        bounds[side] = bounds[side].union(&b);
         centroids[side].grow(c);
     }
     Halves {
@@ -1187,10 +1183,15 @@ impl PrimitiveRef {
 trait Source {
     type Item: Copy;
     fn bounds(&self, item: Self::Item) -> Aabb;
-    fn centroid(&self, item: Self::Item) -> Vec3;
     /// The primitive's index: breaks ties so every ordering is total, and the
     /// tree does not depend on how an unstable sort treats equal keys.
     fn id(&self, item: Self::Item) -> u32;
+}
+
+/// The point builders sort by: the centre of the primitive's bounds.
+#[inline(always)]
+fn centroid<S: Source>(src: &S, item: S::Item) -> Vec3 {
+    src.bounds(item).center()
 }
 
 struct Indexed<'a, P>(&'a [P]);
@@ -1200,10 +1201,6 @@ impl<P: Primitive> Source for Indexed<'_, P> {
     #[inline(always)]
     fn bounds(&self, i: u32) -> Aabb {
         self.0[i as usize].bounds()
-    }
-    #[inline(always)]
-    fn centroid(&self, i: u32) -> Vec3 {
-        self.0[i as usize].bounds().center()
     }
     #[inline(always)]
     fn id(&self, i: u32) -> u32 {
@@ -1218,10 +1215,6 @@ impl Source for Cached {
     #[inline(always)]
     fn bounds(&self, r: PrimitiveRef) -> Aabb {
         r.bounds
-    }
-    #[inline(always)]
-    fn centroid(&self, r: PrimitiveRef) -> Vec3 {
-        r.bounds.center()
     }
     #[inline(always)]
     fn id(&self, r: PrimitiveRef) -> u32 {
