@@ -55,6 +55,13 @@ pub enum Error {
         /// Depth the traversal stack supports.
         capacity: usize,
     },
+    /// A breadth-first queue given by the caller is too small for the tree.
+    QueueCapacity {
+        /// Entries the tree may need ([`Bvh::breadth_first_queue`](crate::Bvh::breadth_first_queue)).
+        needed: usize,
+        /// Entries the caller provided.
+        available: usize,
+    },
     /// The primitive slice passed to a query is not the one the tree was built over.
     PrimitiveCountMismatch {
         /// Primitive count the tree was built with.
@@ -98,6 +105,10 @@ impl fmt::Display for Error {
             Error::StackOverflow { depth, capacity } => write!(
                 f,
                 "tree depth {depth} exceeds the traversal stack capacity {capacity}"
+            ),
+            Error::QueueCapacity { needed, available } => write!(
+                f,
+                "the breadth-first queue needs {needed} entries but {available} were given"
             ),
             Error::PrimitiveCountMismatch { tree, given } => write!(
                 f,

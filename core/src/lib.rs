@@ -43,10 +43,12 @@
 pub mod build;
 pub mod bv;
 mod error;
+pub mod narrow;
 mod primitive;
 pub mod query;
 pub mod round;
 mod stats;
+pub mod transform;
 pub mod tree;
 
 pub use build::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
@@ -54,9 +56,15 @@ pub use bv::{
     symmetric_eigen, Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, PointSet, Sphere,
 };
 pub use error::Error;
+pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
-pub use query::{brute_force, overlapping_pairs, Collector, Descent, Region};
+pub use query::{
+    brute_force, overlapping_pairs, Answer, Bounds, Collector, CostModel, Counts, Decision,
+    DepthSwitch, Descent, DescentRule, Exact, Frame, Hit, Nearest, Open, Order, PairTraversal,
+    Pairs, Place, PointDistance, Ray, RayOrder, RayTarget, Region, Same, Tally,
+};
 pub use stats::TreeStats;
+pub use transform::{Rigid, Transform};
 pub use tree::{max_nodes, Bvh, Node, MAX_DEPTH};
 
 pub use glam;

@@ -3,8 +3,9 @@
 
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    brute_force, overlapping_pairs, Aabb, AxisChoice, BoundingVolume, Bvh, Descent, Node,
-    OnFailure, Partition, Primitive, SplitPoint, Stop, TopDown, Triangle,
+    brute_force, overlapping_pairs, Aabb, Answer, AxisChoice, BoundingVolume, Bounds, Bvh, Counts,
+    DepthSwitch, Descent, Frame, Node, OnFailure, PairTraversal, Pairs, Partition, Place,
+    Primitive, Same, SplitPoint, Stop, TopDown, Triangle,
 };
 use proptest::prelude::*;
 
@@ -229,12 +230,98 @@ pub fn check_against_brute_force<B: BoundingVolume>(
 
     let mut want = Vec::new();
     brute_force::pairs(a, b, |i, j| want.push((i, j)));
+    want.sort_unstable();
     for rule in Descent::ALL {
         let mut got = Vec::new();
         let n = overlapping_pairs(&ta, a, &tb, b, rule, |i, j| got.push((i, j))).unwrap();
         got.sort_unstable();
         prop_assert_eq!(n, got.len());
         prop_assert_eq!(&got, &want, "pairs, {} {:?} {:?}", B::NAME, rule, cfg);
+    }
+    check_pairs(&ta, a, &tb, b, &Same, Bounds, cfg)?;
+    Ok(())
+}
+
+/// Every traversal kind with every descent rule, plus a user combination.
+pub fn all_traversals() -> Vec<PairTraversal<DepthSwitch<Descent, Descent>>> {
+    let mut out = Vec::new();
+    let fixed = |d: Descent| DepthSwitch {
+        depth: 0,
+        near: d,
+        far: d,
+    };
+    for rule in Descent::ALL {
+        out.push(PairTraversal::Recursive(fixed(rule)));
+        out.push(PairTraversal::Stack(fixed(rule)));
+    }
+    let mixed = DepthSwitch {
+        depth: 3,
+        near: Descent::Simultaneous,
+        far: Descent::Overlap,
+    };
+    out.push(PairTraversal::Stack(mixed));
+    out.push(PairTraversal::Recursive(mixed));
+    out.push(PairTraversal::Simultaneous);
+    out.push(PairTraversal::LeafDirected);
+    out
+}
+
+/// Checks every traversal and the three result modes against
+/// [`brute_force::pairs_placed`] for one frame and answer.
+pub fn check_pairs<B, F, X>(
+    ta: &Bvh<B>,
+    a: &[Triangle],
+    tb: &Bvh<B>,
+    b: &[Triangle],
+    frame: &F,
+    answer: X,
+    cfg: &TopDown,
+) -> Result<(), TestCaseError>
+where
+    B: BoundingVolume,
+    F: Frame + Place<Triangle> + Copy + std::fmt::Debug,
+    X: Answer<Triangle, Triangle> + Copy + std::fmt::Debug,
+{
+    let mut want = Vec::new();
+    brute_force::pairs_placed(a, b, frame, answer, |i, j| want.push((i, j)));
+    want.sort_unstable();
+    for traversal in all_traversals() {
+        let query = || {
+            Pairs::new(ta, a, tb, b)
+                .traversal(traversal)
+                .in_frame_of(*frame)
+                .answer(answer)
+        };
+        let mut got = Vec::new();
+        let mut counts = Counts::default();
+        let n = query()
+            .counted(&mut counts)
+            .for_each(|i, j| got.push((i, j)))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(n, got.len());
+        prop_assert_eq!(
+            &got,
+            &want,
+            "{} tree, {:?}, {:?}, {:?}, {:?}",
+            B::NAME,
+            traversal,
+            frame,
+            answer,
+            cfg
+        );
+        prop_assert!(counts.prim_tests >= n as u64);
+        prop_assert_eq!(counts.updates > 0, F::MOVES);
+        prop_assert_eq!(query().count().unwrap(), want.len());
+        let first = query().first().unwrap();
+        prop_assert_eq!(first.is_some(), !want.is_empty());
+        if let Some(p) = first {
+            prop_assert!(
+                want.binary_search(&p).is_ok(),
+                "first pair {:?} is not an answer",
+                p
+            );
+        }
     }
     Ok(())
 }

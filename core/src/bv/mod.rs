@@ -188,4 +188,13 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     }
     /// Whether this is the empty volume.
     fn is_empty(&self) -> bool;
+
+    /// The volume carried by a rigid motion, conservatively: it contains every
+    /// point of `self` moved by [`Rigid::apply`](crate::Rigid::apply). The
+    /// default boxes the moved enclosing box, which is valid for every volume
+    /// but loose for rotated OBBs and k-DOPs; types override it when they can
+    /// do better.
+    fn transformed(&self, t: &crate::Rigid) -> Self {
+        Self::from_aabb(&t.apply_aabb(&self.aabb()))
+    }
 }

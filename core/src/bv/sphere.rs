@@ -492,4 +492,16 @@ impl BoundingVolume for Sphere {
     fn is_empty(&self) -> bool {
         self.radius < 0.0 || self.radius.is_nan()
     }
+
+    /// Moves the centre; the radius grows by a few `f32` ulps of the moved
+    /// coordinates so that points moved and rounded by [`Rigid::apply`](crate::Rigid::apply) stay inside.
+    fn transformed(&self, t: &crate::Rigid) -> Self {
+        if self.is_empty() {
+            return *self;
+        }
+        let c = t.apply(self.center);
+        let scale = c.abs().max_element() as f64 + self.radius as f64;
+        let r = self.radius as f64 + 4.0 * f32::EPSILON as f64 * scale;
+        Sphere::new(c, crate::round::up(r))
+    }
 }

@@ -44,3 +44,66 @@ pub fn pairs<P: Primitive, Q: Primitive>(a: &[P], b: &[Q], mut f: impl FnMut(u32
     }
     found
 }
+
+/// Every pair `(i, j)` that `answer` accepts, with `b[j]` first placed in A's
+/// frame by `frame` (for example a [`Rigid`](crate::Rigid) motion); returns
+/// the count. The reference for [`Pairs`](crate::Pairs) with any frame and
+/// answer.
+///
+/// ```
+/// use bvhkit::{brute_force, Exact, Rigid, Triangle};
+/// use glam::Vec3;
+/// let a = [Triangle::new(Vec3::ZERO, Vec3::X * 2.0, Vec3::Y * 2.0)];
+/// let b = [Triangle::new(Vec3::new(0.5, 0.5, -1.0), Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.6, 0.5, 1.0))];
+/// let lift = Rigid::translation(Vec3::Z * 5.0)?;
+/// assert_eq!(brute_force::pairs_placed(&a, &b, &bvhkit::Same, Exact, |_, _| {}), 1);
+/// assert_eq!(brute_force::pairs_placed(&a, &b, &lift, Exact, |_, _| {}), 0);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+pub fn pairs_placed<P, Q, F: crate::Place<Q>, X: crate::Answer<P, Q>>(
+    a: &[P],
+    b: &[Q],
+    frame: &F,
+    mut answer: X,
+    mut f: impl FnMut(u32, u32),
+) -> usize {
+    let mut found = 0;
+    for (j, q) in b.iter().enumerate() {
+        let q = frame.place(q);
+        for (i, p) in a.iter().enumerate() {
+            if answer.accept(p, &q) {
+                f(i as u32, j as u32);
+                found += 1;
+            }
+        }
+    }
+    found
+}
+
+/// The closest ray hit over all primitives (smallest `t`, then smallest index).
+pub fn ray_closest<P: crate::RayTarget>(prims: &[P], ray: &crate::Ray) -> Option<crate::Hit> {
+    let mut best: Option<crate::Hit> = None;
+    for (i, p) in prims.iter().enumerate() {
+        if let Some(t) = p.ray_hit(ray) {
+            if best.is_none_or(|b| t < b.t) {
+                best = Some(crate::Hit { prim: i as u32, t });
+            }
+        }
+    }
+    best
+}
+
+/// The nearest primitive to `point` (smallest squared distance, then smallest index).
+pub fn nearest<P: crate::PointDistance>(prims: &[P], point: glam::Vec3) -> Option<crate::Nearest> {
+    let mut best: Option<crate::Nearest> = None;
+    for (i, p) in prims.iter().enumerate() {
+        let d = p.distance_squared(point);
+        if best.is_none_or(|b| d < b.distance_squared) {
+            best = Some(crate::Nearest {
+                prim: i as u32,
+                distance_squared: d,
+            });
+        }
+    }
+    best
+}

@@ -1,11 +1,70 @@
 //! Descent rules: which tree to descend when two internal nodes overlap.
 
-use crate::bv::BoundingVolume;
-use crate::tree::Node;
+use crate::bv::{Aabb, BoundingVolume};
 
-/// The rule a two-tree traversal uses to pick which node to open next.
-/// Every rule finds the same pairs; they differ in how many volume tests
-/// (`Nv` in the cost function) they spend getting there.
+/// Which side(s) of an overlapping node pair to open.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Open {
+    /// Test A's two children against B.
+    A,
+    /// Test A against B's two children.
+    B,
+    /// Test the four child pairs.
+    Both,
+}
+
+/// What a rule sees when both nodes are internal: the two volumes (B already
+/// in A's frame), their children's volumes when the rule asked for them with
+/// [`DescentRule::wants_children`], and the number of descents so far.
+#[derive(Clone, Copy, Debug)]
+pub struct Decision<'a, B> {
+    /// The node of tree A.
+    pub a: &'a B,
+    /// The node of tree B, in A's frame.
+    pub b: &'a B,
+    /// A's children, when asked for.
+    pub a_children: Option<[&'a B; 2]>,
+    /// B's children in A's frame, when asked for.
+    pub b_children: Option<[&'a B; 2]>,
+    /// Descents from the root pair to this pair.
+    pub depth: u32,
+}
+
+/// A descent rule: decides which node to open when two internal nodes
+/// overlap. Leaves are never opened; the traversal handles leaf–internal pairs
+/// by opening the internal side, so a rule only sees internal–internal pairs.
+///
+/// Implement it to write your own rule; [`Descent`] holds the lectures' rules
+/// and [`DepthSwitch`] combines two.
+///
+/// ```
+/// use bvhkit::{Aabb, BoundingVolume, Decision, DescentRule, Open};
+/// /// Descend the node with the larger surface area (instead of volume).
+/// #[derive(Clone, Copy, Debug)]
+/// struct LargerArea;
+/// impl DescentRule for LargerArea {
+///     fn choose<B: BoundingVolume>(&self, d: &Decision<'_, B>) -> Open {
+///         if d.a.surface_area() >= d.b.surface_area() { Open::A } else { Open::B }
+///     }
+/// }
+/// let (big, small) = (Aabb::new(glam::Vec3::ZERO, glam::Vec3::ONE * 2.0), Aabb::new(glam::Vec3::ZERO, glam::Vec3::ONE));
+/// let d = Decision { a: &small, b: &big, a_children: None, b_children: None, depth: 0 };
+/// assert_eq!(LargerArea.choose(&d), Open::B);
+/// ```
+pub trait DescentRule {
+    /// Which side to open.
+    fn choose<B: BoundingVolume>(&self, d: &Decision<'_, B>) -> Open;
+
+    /// Whether [`choose`](Self::choose) reads the children's volumes. The
+    /// traversal fetches them only when asked (for a moved tree B that is two
+    /// extra updates per decision).
+    fn wants_children(&self) -> bool {
+        false
+    }
+}
+
+/// The descent rules of the lectures. Every rule finds the same pairs; they
+/// differ in how many volume tests (`Nv` in the cost function) they spend.
 ///
 /// ```
 /// use bvhkit::{overlapping_pairs, Aabb, Descent, Node, TopDown, Triangle};
@@ -23,32 +82,42 @@ use crate::tree::Node;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Descent {
-    /// Descend A to its leaves before touching B. Cheap decisions, but costly
-    /// when B's root contains all of A: every A node is tested against B's root.
+    /// Descend A to its leaves before touching B. No decision cost, and good
+    /// when A is the smaller object; costly when B's root contains all of A,
+    /// since every node of A is then tested against B's root.
     AFirst,
-    /// The mirror image of [`AFirst`](Self::AFirst).
+    /// The mirror image of [`AFirst`](Self::AFirst): good when B is small.
     BFirst,
-    /// Open the node with the larger [`size`](BoundingVolume::size): keeps the
-    /// two volumes similar in size, so each test prunes well. The usual default.
+    /// Open the node with the larger [`size`](BoundingVolume::size). Keeps
+    /// the two volumes of similar size, so each test prunes well; one size
+    /// comparison per decision. The usual default.
     #[default]
     Larger,
-    /// Open both at once (four child pairs): no decision cost, prunes less finely.
+    /// Open both (four child tests per step). No decision cost and fewer
+    /// stack steps; prunes less finely when the nodes differ much in size.
     Simultaneous,
-    /// Alternate between A and B with depth.
+    /// Alternate between A and B with depth. No decision cost; wins over
+    /// A-first when the trees are alike, loses to "larger" when they are not.
     Alternate,
+    /// Open the side whose children overlap the other node least (by the
+    /// volume of the children's box intersections with the other node's box):
+    /// the side where one step prunes most. Costs four box intersections per
+    /// decision; wins on deep, overlapping trees where pruning matters most.
+    Overlap,
 }
 
 impl Descent {
     /// All rules, for tables and tests.
-    pub const ALL: [Descent; 5] = [
+    pub const ALL: [Descent; 6] = [
         Descent::AFirst,
         Descent::BFirst,
         Descent::Larger,
         Descent::Simultaneous,
         Descent::Alternate,
+        Descent::Overlap,
     ];
 
-    /// Short name for tables.
+    /// Short name for tables and the command line.
     pub const fn name(self) -> &'static str {
         match self {
             Descent::AFirst => "a-first",
@@ -56,34 +125,101 @@ impl Descent {
             Descent::Larger => "larger",
             Descent::Simultaneous => "simultaneous",
             Descent::Alternate => "alternate",
+            Descent::Overlap => "overlap",
         }
     }
 
-    /// Which sides to open for a pair where at least one node is internal:
-    /// `(open_a, open_b)`. A leaf is never opened.
+    /// The rule with this [`name`](Self::name).
+    pub fn from_name(name: &str) -> Option<Descent> {
+        Descent::ALL.into_iter().find(|d| d.name() == name)
+    }
+}
+
+impl DescentRule for Descent {
     #[inline]
-    pub(crate) fn choose<B: BoundingVolume>(
-        self,
-        a: &Node<B>,
-        b: &Node<B>,
-        depth: u32,
-    ) -> (bool, bool) {
-        let (la, lb) = (a.is_leaf(), b.is_leaf());
-        if la {
-            return (false, true);
-        }
-        if lb {
-            return (true, false);
-        }
+    fn choose<B: BoundingVolume>(&self, d: &Decision<'_, B>) -> Open {
         match self {
-            Descent::AFirst => (true, false),
-            Descent::BFirst => (false, true),
-            Descent::Larger => {
-                let a_larger = a.bv.size() >= b.bv.size();
-                (a_larger, !a_larger)
+            Descent::AFirst => Open::A,
+            Descent::BFirst => Open::B,
+            Descent::Larger => larger(d),
+            Descent::Simultaneous => Open::Both,
+            Descent::Alternate => {
+                if d.depth % 2 == 0 {
+                    Open::A
+                } else {
+                    Open::B
+                }
             }
-            Descent::Simultaneous => (true, true),
-            Descent::Alternate => (depth % 2 == 0, depth % 2 == 1),
+            Descent::Overlap => match (d.a_children, d.b_children) {
+                (Some(ac), Some(bc)) => {
+                    let (a, b) = (d.a.aabb(), d.b.aabb());
+                    let left_by_a = shared(&ac[0].aabb(), &b) + shared(&ac[1].aabb(), &b);
+                    let left_by_b = shared(&bc[0].aabb(), &a) + shared(&bc[1].aabb(), &a);
+                    if left_by_a <= left_by_b {
+                        Open::A
+                    } else {
+                        Open::B
+                    }
+                }
+                _ => larger(d),
+            },
         }
+    }
+
+    #[inline]
+    fn wants_children(&self) -> bool {
+        *self == Descent::Overlap
+    }
+}
+
+#[inline]
+fn larger<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
+    if d.a.size() >= d.b.size() {
+        Open::A
+    } else {
+        Open::B
+    }
+}
+
+/// Volume of the intersection of two boxes, in `f64` (zero when disjoint).
+fn shared(x: &Aabb, y: &Aabb) -> f64 {
+    let lo = x.min.max(y.min).as_dvec3();
+    let hi = x.max.min(y.max).as_dvec3();
+    let e = (hi - lo).max(glam::DVec3::ZERO);
+    e.x * e.y * e.z
+}
+
+/// A combination of two rules: `near` for the first `depth` descents, `far`
+/// below. For example "simultaneous near the roots, where both trees are
+/// large and alike; larger-first below".
+///
+/// ```
+/// use bvhkit::{DepthSwitch, Descent, PairTraversal, Pairs};
+/// let rule = DepthSwitch { depth: 4, near: Descent::Simultaneous, far: Descent::Larger };
+/// let traversal = PairTraversal::Stack(rule);
+/// # let _ = traversal;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthSwitch<N, F> {
+    /// Descents handled by `near`.
+    pub depth: u32,
+    /// The rule near the roots.
+    pub near: N,
+    /// The rule below `depth`.
+    pub far: F,
+}
+
+impl<N: DescentRule, F: DescentRule> DescentRule for DepthSwitch<N, F> {
+    #[inline]
+    fn choose<B: BoundingVolume>(&self, d: &Decision<'_, B>) -> Open {
+        if d.depth < self.depth {
+            self.near.choose(d)
+        } else {
+            self.far.choose(d)
+        }
+    }
+
+    fn wants_children(&self) -> bool {
+        self.near.wants_children() || self.far.wants_children()
     }
 }

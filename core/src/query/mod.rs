@@ -13,10 +13,20 @@
 pub mod brute_force;
 mod collect;
 mod descent;
+mod heap;
+mod nearest;
 mod pair;
+mod ray;
 mod single;
+mod tally;
 
 pub use collect::Collector;
-pub use descent::Descent;
-pub use pair::overlapping_pairs;
-pub use single::Region;
+pub use descent::{Decision, DepthSwitch, Descent, DescentRule, Open};
+pub use heap::BEST_FIRST_QUEUE;
+pub use nearest::{Nearest, PointDistance};
+pub use pair::{
+    overlapping_pairs, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place, Same, PAIR_STACK,
+};
+pub use ray::{Hit, Ray, RayOrder, RayTarget};
+pub use single::{Order, Region};
+pub use tally::{CostModel, Counts, Tally};

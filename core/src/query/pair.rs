@@ -1,23 +1,376 @@
-//! Two-tree queries: which primitive pairs of A and B overlap?
+//! Two-tree queries: which primitive pairs of A and B overlap (or intersect)?
+//!
+//! The pipeline of one query is fixed; each stage is a small, swappable type:
+//!
+//! | stage | type | choices |
+//! |---|---|---|
+//! | walk the trees | [`PairTraversal`] | recursive, explicit stack, simultaneous, leaf-directed |
+//! | pick a side | [`DescentRule`] | [`Descent`] (the lectures' rules), [`DepthSwitch`](super::DepthSwitch), your own |
+//! | where B is | [`Frame`] | [`Same`] frame, or a [`Rigid`] motion into A's frame |
+//! | decide a primitive pair | [`Answer`] | [`Bounds`] overlap, [`Exact`] intersection, a closure |
+//! | what to return | method | [`Pairs::for_each`], [`Pairs::first`], [`Pairs::count`] |
+//! | count the work | [`Tally`] | `()` (free), [`Counts`](super::Counts) |
 
-use super::Descent;
+use super::{Decision, Descent, DescentRule, Open, Tally};
 use crate::bv::BoundingVolume;
+use crate::narrow::Intersects;
 use crate::primitive::Primitive;
-use crate::tree::{Bvh, MAX_DEPTH};
+use crate::transform::{Rigid, Transform};
+use crate::tree::{Bvh, Node, MAX_DEPTH};
 use crate::Error;
+use core::ops::ControlFlow;
 
-/// Stack entries for a pair traversal: one-sided rules wait on at most one pair
-/// per level (`<= 2 * MAX_DEPTH` levels); simultaneous descent on at most three
-/// per level while both sides descend.
-const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
+/// Stack entries for a pair traversal. Each descent step leaves at most one
+/// pair waiting when one side opens and three when both open; a path has at
+/// most `2 * MAX_DEPTH` one-sided or `MAX_DEPTH` two-sided steps.
+pub const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
+
+/// How a two-tree query walks the trees. The answer is the same for every
+/// choice; the work differs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairTraversal<D = Descent> {
+    /// The lectures' generic informed depth-first traversal, written as a
+    /// recursive function: test the pair on entry, collide two leaves,
+    /// otherwise let the rule pick a side and recurse on its children. Uses
+    /// the call stack (at most `2 * MAX_DEPTH + 1` frames).
+    Recursive(D),
+    /// The same traversal without recursion: an explicit fixed stack of
+    /// [`PAIR_STACK`] pairs, child pairs tested before they are pushed.
+    /// Usually the fastest; the default with [`Descent::Larger`].
+    Stack(D),
+    /// The textbook's simultaneous depth-first traversal: both trees descend
+    /// in lock step (four child pairs per step) on the explicit stack. The
+    /// same walk as `Stack(Descent::Simultaneous)`.
+    Simultaneous,
+    /// Leaf-directed depth-first traversal: walk A alone (pruned against B's
+    /// root) and, at each leaf of A, run a single-tree query of that leaf's
+    /// volume down B. Tight inner loop; good when A's leaves are few or small
+    /// against B, wasteful when B's top levels get re-tested per leaf of A.
+    LeafDirected,
+}
+
+impl Default for PairTraversal {
+    fn default() -> Self {
+        PairTraversal::Stack(Descent::Larger)
+    }
+}
+
+impl PairTraversal {
+    /// The four traversal kinds with the given rule where they take one.
+    pub const fn all(rule: Descent) -> [PairTraversal; 4] {
+        [
+            PairTraversal::Recursive(rule),
+            PairTraversal::Stack(rule),
+            PairTraversal::Simultaneous,
+            PairTraversal::LeafDirected,
+        ]
+    }
+
+    /// Short name of the traversal kind.
+    pub const fn name(&self) -> &'static str {
+        match self {
+            PairTraversal::Recursive(_) => "recursive",
+            PairTraversal::Stack(_) => "stack",
+            PairTraversal::Simultaneous => "simultaneous",
+            PairTraversal::LeafDirected => "leaf-directed",
+        }
+    }
+}
+
+/// Where tree B sits relative to tree A.
+pub trait Frame {
+    /// Whether volumes of B are moved (each move counts as an update, `Nu`).
+    const MOVES: bool;
+    /// A volume of B, in A's frame.
+    fn bv<B: BoundingVolume>(&self, bv: &B) -> B;
+}
+
+/// Places a primitive of B in A's frame.
+pub trait Place<Q> {
+    /// The primitive in A's frame.
+    fn place(&self, q: &Q) -> Q;
+}
+
+/// B is in A's frame already (no updates).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Same;
+
+impl Frame for Same {
+    const MOVES: bool = false;
+    #[inline(always)]
+    fn bv<B: BoundingVolume>(&self, bv: &B) -> B {
+        *bv
+    }
+}
+
+impl<Q: Clone> Place<Q> for Same {
+    #[inline(always)]
+    fn place(&self, q: &Q) -> Q {
+        q.clone()
+    }
+}
+
+/// B is moved into A's frame by this motion (B's model frame to A's).
+impl Frame for Rigid {
+    const MOVES: bool = true;
+    #[inline]
+    fn bv<B: BoundingVolume>(&self, bv: &B) -> B {
+        bv.transformed(self)
+    }
+}
+
+impl<Q: Transform> Place<Q> for Rigid {
+    #[inline]
+    fn place(&self, q: &Q) -> Q {
+        q.transformed(self)
+    }
+}
+
+/// Decides whether a primitive pair (B's already in A's frame) is an answer.
+pub trait Answer<P, Q> {
+    /// `true` to report the pair.
+    fn accept(&mut self, p: &P, q: &Q) -> bool;
+}
+
+/// Report pairs whose primitive bounds overlap: the *candidate* pairs.
+/// Exact for boxes; for other primitives a superset of the touching pairs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Bounds;
+
+impl<P: Primitive, Q: Primitive> Answer<P, Q> for Bounds {
+    #[inline]
+    fn accept(&mut self, p: &P, q: &Q) -> bool {
+        p.bounds().overlaps(&q.bounds())
+    }
+}
+
+/// Report pairs that really touch ([`Intersects`]): bounds first (cheap
+/// reject), then the exact test.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Exact;
+
+impl<P: Primitive + Intersects<Q>, Q: Primitive> Answer<P, Q> for Exact {
+    #[inline]
+    fn accept(&mut self, p: &P, q: &Q) -> bool {
+        p.bounds().overlaps(&q.bounds()) && p.intersects(q)
+    }
+}
+
+/// Any closure can decide, e.g. to count candidates on the way to an exact answer.
+impl<P, Q, G: FnMut(&P, &Q) -> bool> Answer<P, Q> for G {
+    #[inline]
+    fn accept(&mut self, p: &P, q: &Q) -> bool {
+        self(p, q)
+    }
+}
+
+/// A two-tree query, configured step by step, then run in one of three
+/// result modes.
+///
+/// ```
+/// use bvhkit::{Aabb, Counts, Descent, Node, PairTraversal, Pairs, Rigid, TopDown, Triangle};
+/// use glam::{Quat, Vec3};
+/// let tris: Vec<Triangle> = (0..16).map(|i| {
+///     let o = Vec3::new(i as f32, 0.0, 0.0);
+///     Triangle::new(o, o + Vec3::new(1.2, 0.0, 0.0), o + Vec3::new(0.0, 1.0, 0.0))
+/// }).collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(16)];
+/// let mut idx = vec![0; 16];
+/// let tree = TopDown::default().with_max_leaf_size(2).build(&tris, &mut nodes, &mut idx)?;
+///
+/// // The same mesh, turned a quarter around z and stood on its end.
+/// let motion = Rigid::new(Quat::from_rotation_z(1.5708), Vec3::new(8.5, -4.0, 0.0))?;
+/// let mut counts = Counts::default();
+/// let mut hits = Vec::new();
+/// Pairs::new(&tree, &tris, &tree, &tris)
+///     .traversal(PairTraversal::Stack(Descent::Larger))
+///     .in_frame(motion)
+///     .exact()
+///     .counted(&mut counts)
+///     .for_each(|a, b| hits.push((a, b)))?;
+/// assert!(!hits.is_empty());
+/// assert!(counts.bv_tests > 0 && counts.updates > 0);
+/// // Other modes: stop at the first pair, or only count.
+/// let first = Pairs::new(&tree, &tris, &tree, &tris).in_frame(motion).exact().first()?;
+/// assert!(first.is_some_and(|p| hits.contains(&p)));
+/// assert_eq!(Pairs::new(&tree, &tris, &tree, &tris).in_frame(motion).exact().count()?, hits.len());
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct Pairs<'q, B, P, Q, D = Descent, F = Same, X = Bounds, T = ()> {
+    a: &'q Bvh<'q, B>,
+    pa: &'q [P],
+    b: &'q Bvh<'q, B>,
+    pb: &'q [Q],
+    traversal: PairTraversal<D>,
+    frame: F,
+    answer: X,
+    tally: T,
+}
+
+impl<'q, B: BoundingVolume, P, Q> Pairs<'q, B, P, Q> {
+    /// Tree A over `pa` against tree B over `pb`: stack traversal, larger-first
+    /// rule, same frame, bounds answer, no counting.
+    pub fn new(a: &'q Bvh<'q, B>, pa: &'q [P], b: &'q Bvh<'q, B>, pb: &'q [Q]) -> Self {
+        Pairs {
+            a,
+            pa,
+            b,
+            pb,
+            traversal: PairTraversal::default(),
+            frame: Same,
+            answer: Bounds,
+            tally: (),
+        }
+    }
+}
+
+impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
+    /// Chooses the traversal (and with it the descent rule).
+    pub fn traversal<D2>(self, traversal: PairTraversal<D2>) -> Pairs<'q, B, P, Q, D2, F, X, T> {
+        Pairs {
+            a: self.a,
+            pa: self.pa,
+            b: self.b,
+            pb: self.pb,
+            traversal,
+            frame: self.frame,
+            answer: self.answer,
+            tally: self.tally,
+        }
+    }
+
+    /// Shorthand for `traversal(PairTraversal::Stack(rule))`.
+    pub fn descent<D2>(self, rule: D2) -> Pairs<'q, B, P, Q, D2, F, X, T> {
+        self.traversal(PairTraversal::Stack(rule))
+    }
+
+    /// Queries B as if moved by `motion` (B's frame to A's), without rebuilding it.
+    pub fn in_frame(self, motion: Rigid) -> Pairs<'q, B, P, Q, D, Rigid, X, T> {
+        self.in_frame_of(motion)
+    }
+
+    /// Places B by any [`Frame`] ([`Same`] or a [`Rigid`] motion).
+    pub fn in_frame_of<F2>(self, frame: F2) -> Pairs<'q, B, P, Q, D, F2, X, T> {
+        Pairs {
+            a: self.a,
+            pa: self.pa,
+            b: self.b,
+            pb: self.pb,
+            traversal: self.traversal,
+            frame,
+            answer: self.answer,
+            tally: self.tally,
+        }
+    }
+
+    /// Decides primitive pairs with `answer`.
+    pub fn answer<X2>(self, answer: X2) -> Pairs<'q, B, P, Q, D, F, X2, T> {
+        Pairs {
+            a: self.a,
+            pa: self.pa,
+            b: self.b,
+            pb: self.pb,
+            traversal: self.traversal,
+            frame: self.frame,
+            answer,
+            tally: self.tally,
+        }
+    }
+
+    /// Reports only pairs that really touch (the narrow phase).
+    pub fn exact(self) -> Pairs<'q, B, P, Q, D, F, Exact, T> {
+        self.answer(Exact)
+    }
+
+    /// Counts `Nv`, `Np` and `Nu` into `tally`.
+    pub fn counted<T2: Tally>(self, tally: T2) -> Pairs<'q, B, P, Q, D, F, X, T2> {
+        Pairs {
+            a: self.a,
+            pa: self.pa,
+            b: self.b,
+            pb: self.pb,
+            traversal: self.traversal,
+            frame: self.frame,
+            answer: self.answer,
+            tally,
+        }
+    }
+}
+
+impl<B, P, Q, D, F, X, T> Pairs<'_, B, P, Q, D, F, X, T>
+where
+    B: BoundingVolume,
+    D: DescentRule,
+    F: Frame + Place<Q>,
+    X: Answer<P, Q>,
+    T: Tally,
+{
+    /// Calls `f(a, b)` for every answer pair; returns how many there were.
+    pub fn for_each(self, mut f: impl FnMut(u32, u32)) -> Result<usize, Error> {
+        let mut found = 0;
+        self.run(|p, q| {
+            f(p, q);
+            found += 1;
+            ControlFlow::Continue(())
+        })?;
+        Ok(found)
+    }
+
+    /// The first answer pair found (early out), or `None` when there is none.
+    /// Which pair comes first depends on the traversal; that one exists does not.
+    pub fn first(self) -> Result<Option<(u32, u32)>, Error> {
+        let mut first = None;
+        self.run(|p, q| {
+            first = Some((p, q));
+            ControlFlow::Break(())
+        })?;
+        Ok(first)
+    }
+
+    /// Only the number of answer pairs.
+    pub fn count(self) -> Result<usize, Error> {
+        self.for_each(|_, _| {})
+    }
+
+    fn run(self, mut sink: impl FnMut(u32, u32) -> ControlFlow<()>) -> Result<(), Error> {
+        self.a.check_query(self.pa.len())?;
+        self.b.check_query(self.pb.len())?;
+        let (pa, pb, frame) = (self.pa, self.pb, &self.frame);
+        let mut answer = self.answer;
+        let mut walk = Walk {
+            a: self.a,
+            b: self.b,
+            frame: &self.frame,
+            tally: self.tally,
+            leaf: |p: u32, q: u32| {
+                let placed = frame.place(&pb[q as usize]);
+                if answer.accept(&pa[p as usize], &placed) {
+                    sink(p, q)
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        };
+        match &self.traversal {
+            PairTraversal::Recursive(rule) => {
+                let rb = walk.b_bv(0);
+                let _ = walk.recurse(rule, 0, 0, &rb, 0);
+                Ok(())
+            }
+            PairTraversal::Stack(rule) => walk.stack(rule).map(drop),
+            PairTraversal::Simultaneous => walk.stack(&Descent::Simultaneous).map(drop),
+            PairTraversal::LeafDirected => walk.leaf_directed().map(drop),
+        }
+    }
+}
 
 /// Calls `f(a, b)` for every pair of primitives, one from each tree, whose
-/// bounds overlap; returns the count.
+/// bounds overlap; returns the count. Shorthand for
+/// `Pairs::new(a, prims_a, b, prims_b).descent(rule).for_each(f)`.
 ///
-/// This is the lectures' informed depth-first traversal with an explicit stack:
-/// a pair of nodes is opened only if their volumes overlap, and `rule` picks
-/// which side to open. The root pair and every child pair are tested before
-/// they are pushed, so even trees of one or two leaves are pruned correctly.
+/// The root pair and every child pair are tested before they are pushed, so
+/// even trees of one or two leaves are pruned correctly.
 ///
 /// ```
 /// use bvhkit::{overlapping_pairs, Aabb, Descent, Node, TopDown, Triangle};
@@ -34,60 +387,292 @@ const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
 /// assert_eq!(pairs, [(0, 0)]);
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
-pub fn overlapping_pairs<B: BoundingVolume, P: Primitive, Q: Primitive>(
+pub fn overlapping_pairs<B: BoundingVolume, P: Primitive, Q: Primitive + Clone>(
     a: &Bvh<'_, B>,
     prims_a: &[P],
     b: &Bvh<'_, B>,
     prims_b: &[Q],
     rule: Descent,
-    mut f: impl FnMut(u32, u32),
+    f: impl FnMut(u32, u32),
 ) -> Result<usize, Error> {
-    a.check_query(prims_a.len())?;
-    b.check_query(prims_b.len())?;
-    let (na, nb) = (a.nodes(), b.nodes());
-    let mut stack = [(0u32, 0u32, 0u32); PAIR_STACK];
-    let mut top = 0;
-    let mut found = 0;
-    if na[0].bv.overlaps(&nb[0].bv) {
-        top = 1;
+    Pairs::new(a, prims_a, b, prims_b).descent(rule).for_each(f)
+}
+
+/// The machinery shared by every traversal: node access across frames,
+/// counted tests, and the leaf-pair callback.
+struct Walk<'q, B, F, T, L> {
+    a: &'q Bvh<'q, B>,
+    b: &'q Bvh<'q, B>,
+    frame: &'q F,
+    tally: T,
+    leaf: L,
+}
+
+type Flow = ControlFlow<()>;
+
+impl<B, F, T, L> Walk<'_, B, F, T, L>
+where
+    B: BoundingVolume,
+    F: Frame,
+    T: Tally,
+    L: FnMut(u32, u32) -> Flow,
+{
+    #[inline(always)]
+    fn na(&self, i: u32) -> &Node<B> {
+        &self.a.nodes()[i as usize]
     }
-    while top > 0 {
-        top -= 1;
-        let (i, j, depth) = stack[top];
-        let (x, y) = (&na[i as usize], &nb[j as usize]);
-        if x.is_leaf() && y.is_leaf() {
-            for &p in a.leaf_primitives(x) {
-                let pb = prims_a[p as usize].bounds();
-                for &q in b.leaf_primitives(y) {
-                    if pb.overlaps(&prims_b[q as usize].bounds()) {
-                        f(p, q);
-                        found += 1;
-                    }
-                }
-            }
-            continue;
+
+    #[inline(always)]
+    fn nb(&self, j: u32) -> &Node<B> {
+        &self.b.nodes()[j as usize]
+    }
+
+    /// B's node volume in A's frame.
+    #[inline(always)]
+    fn b_bv(&mut self, j: u32) -> B {
+        if F::MOVES {
+            self.tally.updates(1);
         }
-        let (open_a, open_b) = rule.choose(x, y, depth);
-        let sides = |open: bool, node: &crate::Node<B>, me: u32| match (open, node.children()) {
-            (true, Some((l, r))) => ([l, r], 2),
-            _ => ([me, me], 1),
+        self.frame.bv(&self.b.nodes()[j as usize].bv)
+    }
+
+    #[inline(always)]
+    fn test(&mut self, x: &B, y: &B) -> bool {
+        self.tally.bv_tests(1);
+        x.overlaps(y)
+    }
+
+    /// Every primitive pair of two leaves.
+    #[inline]
+    fn leaves(&mut self, i: u32, j: u32) -> Flow {
+        let (a, b) = (self.a, self.b);
+        let (la, lb) = (a.leaf_primitives(self.na(i)), b.leaf_primitives(self.nb(j)));
+        for &p in la {
+            for &q in lb {
+                self.tally.prim_tests(1);
+                (self.leaf)(p, q)?;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Both nodes internal: B's children in A's frame (if the rule wants
+    /// them) and the rule's choice.
+    #[inline]
+    fn decide<D: DescentRule>(
+        &mut self,
+        rule: &D,
+        (i, j): (u32, u32),
+        yb: &B,
+        depth: u32,
+    ) -> (Open, Option<[B; 2]>) {
+        let (al, ar) = children(self.na(i));
+        let (bl, br) = children(self.nb(j));
+        let bc = rule
+            .wants_children()
+            .then(|| [self.b_bv(bl), self.b_bv(br)]);
+        let (x, ac) = (&self.na(i).bv, [&self.na(al).bv, &self.na(ar).bv]);
+        let d = Decision {
+            a: x,
+            b: yb,
+            a_children: bc.as_ref().map(|_| ac),
+            b_children: bc.as_ref().map(|c| [&c[0], &c[1]]),
+            depth,
         };
-        let (ca, ka) = sides(open_a, x, i);
-        let (cb, kb) = sides(open_b, y, j);
-        for &u in &ca[..ka] {
-            for &v in &cb[..kb] {
-                if na[u as usize].bv.overlaps(&nb[v as usize].bv) {
-                    if top == PAIR_STACK {
-                        return Err(Error::StackOverflow {
-                            depth: a.depth() + b.depth(),
-                            capacity: PAIR_STACK,
-                        });
-                    }
-                    stack[top] = (u, v, depth + 1);
-                    top += 1;
+        (rule.choose(&d), bc)
+    }
+
+    /// The generic informed depth-first traversal, recursive. `yb` is B's
+    /// node `j` already in A's frame.
+    fn recurse<D: DescentRule>(&mut self, rule: &D, i: u32, j: u32, yb: &B, depth: u32) -> Flow {
+        let xb = self.na(i).bv;
+        if !self.test(&xb, yb) {
+            return ControlFlow::Continue(());
+        }
+        let open = match (self.na(i).is_leaf(), self.nb(j).is_leaf()) {
+            (true, true) => return self.leaves(i, j),
+            (false, true) => (Open::A, None),
+            (true, false) => (Open::B, None),
+            (false, false) => self.decide(rule, (i, j), yb, depth),
+        };
+        match open {
+            (Open::A, _) => {
+                let (l, r) = children(self.na(i));
+                self.recurse(rule, l, j, yb, depth + 1)?;
+                self.recurse(rule, r, j, yb, depth + 1)
+            }
+            (Open::B, known) => {
+                let (l, r) = children(self.nb(j));
+                let [lb, rb] = match known {
+                    Some(c) => c,
+                    None => [self.b_bv(l), self.b_bv(r)],
+                };
+                self.recurse(rule, i, l, &lb, depth + 1)?;
+                self.recurse(rule, i, r, &rb, depth + 1)
+            }
+            (Open::Both, known) => {
+                let (al, ar) = children(self.na(i));
+                let (l, r) = children(self.nb(j));
+                let [lb, rb] = match known {
+                    Some(c) => c,
+                    None => [self.b_bv(l), self.b_bv(r)],
+                };
+                for u in [al, ar] {
+                    self.recurse(rule, u, l, &lb, depth + 1)?;
+                    self.recurse(rule, u, r, &rb, depth + 1)?;
                 }
+                ControlFlow::Continue(())
             }
         }
     }
-    Ok(found)
+
+    /// The same traversal with an explicit stack; pairs are tested before
+    /// they are pushed. `Ok(Break)` when the sink stopped early.
+    fn stack<D: DescentRule>(&mut self, rule: &D) -> Result<Flow, Error> {
+        let mut stack = [(0u32, 0u32, 0u32); PAIR_STACK];
+        let mut top = 0;
+        let overflow = Error::StackOverflow {
+            depth: self.a.depth() + self.b.depth(),
+            capacity: PAIR_STACK,
+        };
+        macro_rules! push {
+            ($i:expr, $j:expr, $d:expr) => {{
+                if top == PAIR_STACK {
+                    return Err(overflow);
+                }
+                stack[top] = ($i, $j, $d);
+                top += 1;
+            }};
+        }
+        let (xa, rb) = (self.na(0).bv, self.b_bv(0));
+        if self.test(&xa, &rb) {
+            push!(0, 0, 0);
+        }
+        while top > 0 {
+            top -= 1;
+            let (i, j, depth) = stack[top];
+            let (open, known, yb) = match (self.na(i).is_leaf(), self.nb(j).is_leaf()) {
+                (true, true) => {
+                    if self.leaves(i, j).is_break() {
+                        return Ok(ControlFlow::Break(()));
+                    }
+                    continue;
+                }
+                (false, true) => (Open::A, None, None),
+                (true, false) => (Open::B, None, None),
+                (false, false) => {
+                    let yb = self.b_bv(j);
+                    let (open, known) = self.decide(rule, (i, j), &yb, depth);
+                    (open, known, Some(yb))
+                }
+            };
+            match (open, known) {
+                (Open::A, _) => {
+                    let yb = match yb {
+                        Some(y) => y,
+                        None => self.b_bv(j),
+                    };
+                    let (l, r) = children(self.na(i));
+                    for c in [r, l] {
+                        let cb = self.na(c).bv;
+                        if self.test(&cb, &yb) {
+                            push!(c, j, depth + 1);
+                        }
+                    }
+                }
+                (Open::B, known) => {
+                    let xb = self.na(i).bv;
+                    let (l, r) = children(self.nb(j));
+                    let bc = match known {
+                        Some(c) => c,
+                        None => [self.b_bv(l), self.b_bv(r)],
+                    };
+                    for (c, cb) in [(r, &bc[1]), (l, &bc[0])] {
+                        if self.test(&xb, cb) {
+                            push!(i, c, depth + 1);
+                        }
+                    }
+                }
+                (Open::Both, known) => {
+                    let (al, ar) = children(self.na(i));
+                    let (l, r) = children(self.nb(j));
+                    let bc = match known {
+                        Some(c) => c,
+                        None => [self.b_bv(l), self.b_bv(r)],
+                    };
+                    for u in [ar, al] {
+                        let ub = self.na(u).bv;
+                        for (v, vb) in [(r, &bc[1]), (l, &bc[0])] {
+                            if self.test(&ub, vb) {
+                                push!(u, v, depth + 1);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(ControlFlow::Continue(()))
+    }
+
+    /// Leaf-directed: depth-first over A pruned by B's root; at each leaf of
+    /// A, a single-tree descent of B with that leaf's volume.
+    fn leaf_directed(&mut self) -> Result<Flow, Error> {
+        let overflow = Error::StackOverflow {
+            depth: self.a.depth().max(self.b.depth()),
+            capacity: MAX_DEPTH + 1,
+        };
+        let mut sa = [0u32; MAX_DEPTH + 1];
+        let mut sb = [0u32; MAX_DEPTH + 1];
+        let (mut ta, rb) = (0, self.b_bv(0));
+        let xa = self.na(0).bv;
+        if self.test(&xa, &rb) {
+            sa[0] = 0;
+            ta = 1;
+        }
+        while ta > 0 {
+            ta -= 1;
+            let i = sa[ta];
+            if let Some((l, r)) = self.na(i).children() {
+                for c in [r, l] {
+                    let cb = self.na(c).bv;
+                    if self.test(&cb, &rb) {
+                        *sa.get_mut(ta).ok_or(overflow)? = c;
+                        ta += 1;
+                    }
+                }
+                continue;
+            }
+            // A leaf of A that overlaps B's root: descend B with its volume.
+            let xb = self.na(i).bv;
+            sb[0] = 0;
+            let mut tb = 1;
+            while tb > 0 {
+                tb -= 1;
+                let j = sb[tb];
+                match self.nb(j).children() {
+                    None => {
+                        if self.leaves(i, j).is_break() {
+                            return Ok(ControlFlow::Break(()));
+                        }
+                    }
+                    Some((l, r)) => {
+                        for c in [r, l] {
+                            let cb = self.b_bv(c);
+                            if self.test(&xb, &cb) {
+                                *sb.get_mut(tb).ok_or(overflow)? = c;
+                                tb += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(ControlFlow::Continue(()))
+    }
+}
+
+/// The children of an internal node (callers check `is_leaf` first).
+#[inline(always)]
+fn children<B: BoundingVolume>(n: &Node<B>) -> (u32, u32) {
+    (n.first, n.first + 1)
 }

@@ -1,0 +1,402 @@
+//! Narrow phase: exact tests between two primitives.
+//!
+//! Lecture: *collision detection system*. The hierarchy only finds primitive
+//! pairs whose bounds overlap (the candidates); the narrow phase decides which
+//! candidates really touch. Triangles are decided **exactly** for `f32` input:
+//! every branch depends only on the sign of an orientation determinant, and
+//! those signs come from Shewchuk's adaptive predicates (the `robust` crate),
+//! which are exact. Touching counts as intersecting: a shared vertex, a shared
+//! edge, or a vertex resting on a face all report `true`.
+//!
+//! | pair | method | exact? |
+//! |---|---|---|
+//! | triangle–triangle | Guigue–Devillers; coplanar pairs in 2-D; zero-area triangles as segments or points | yes |
+//! | box–box | interval comparisons | yes |
+//! | sphere–sphere | squared distance in `f64` | to `f64` rounding |
+
+use crate::bv::{Aabb, Sphere};
+use crate::primitive::Triangle;
+use glam::Vec3;
+use robust::{orient2d, orient3d, Coord, Coord3D};
+
+/// Whether two primitives touch. Implemented where the test can be exact.
+///
+/// ```
+/// use bvhkit::{Intersects, Triangle};
+/// use glam::Vec3;
+/// let floor = Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 4.0));
+/// let post = Triangle::new(Vec3::new(1.0, -1.0, 1.0), Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.5, 1.0, 1.0));
+/// let resting = Triangle::new(Vec3::new(1.0, 0.0, 1.0), Vec3::new(1.0, 2.0, 1.0), Vec3::new(2.0, 2.0, 1.0));
+/// assert!(floor.intersects(&post));
+/// assert!(floor.intersects(&resting)); // touching at one vertex counts
+/// assert!(!floor.intersects(&resting.translated(Vec3::Y * 1e-6)));
+/// ```
+pub trait Intersects<Q: ?Sized = Self> {
+    /// `true` when the two closed sets share at least one point.
+    fn intersects(&self, other: &Q) -> bool;
+}
+
+impl Intersects for Triangle {
+    #[inline]
+    fn intersects(&self, other: &Triangle) -> bool {
+        triangles_intersect(self, other)
+    }
+}
+
+impl Intersects for Aabb {
+    #[inline]
+    fn intersects(&self, other: &Aabb) -> bool {
+        self.overlaps(other)
+    }
+}
+
+impl Intersects for Sphere {
+    fn intersects(&self, other: &Sphere) -> bool {
+        let d = self.center.as_dvec3() - other.center.as_dvec3();
+        let r = self.radius as f64 + other.radius as f64;
+        d.length_squared() <= r * r
+    }
+}
+
+impl<P: Intersects<Q>, Q> Intersects<Q> for &P {
+    #[inline]
+    fn intersects(&self, other: &Q) -> bool {
+        (**self).intersects(other)
+    }
+}
+
+/// Sign (-1, 0, 1) of `det[b - a, c - a, d - a]`, computed exactly: positive
+/// when `d` lies on the side of plane `abc` that `(b - a) × (c - a)` points to.
+#[inline]
+pub fn orient3(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> i8 {
+    // Shewchuk's orient3d is det[a - d, b - d, c - d] = -det[b - a, c - a, d - a].
+    sign(-orient3d(c3(a), c3(b), c3(c), c3(d)))
+}
+
+/// Sign of the `k`-th component of `(b - a) × (c - a)`, computed exactly: the
+/// 2-D orientation of the three points projected along axis `k`.
+#[inline]
+pub fn orient2(a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8 {
+    sign(orient2d(c2(a, k), c2(b, k), c2(c, k)))
+}
+
+/// Exact triangle–triangle intersection (closed triangles, touching counts).
+/// Zero-area triangles are treated as the segment or point they are.
+pub fn triangles_intersect(t1: &Triangle, t2: &Triangle) -> bool {
+    match (degenerate(t1), degenerate(t2)) {
+        (None, None) => guigue_devillers(t1, t2),
+        (None, Some(s)) => segment_triangle(s, t1),
+        (Some(s), None) => segment_triangle(s, t2),
+        (Some(s1), Some(s2)) => segments_intersect(s1, s2),
+    }
+}
+
+/// Exact triangle–triangle intersection by the plain definition: two closed
+/// triangles meet iff an edge of one meets the other. Slower than
+/// [`triangles_intersect`], written independently of it, and used as its
+/// reference in tests.
+pub fn triangles_intersect_by_edges(t1: &Triangle, t2: &Triangle) -> bool {
+    let edges_meet = |s: &Triangle, t: &Triangle| {
+        (0..3).any(|i| {
+            let e = [s.v[i], s.v[(i + 1) % 3]];
+            match degenerate(t) {
+                None => segment_triangle(e, t),
+                Some(s) => segments_intersect(e, s),
+            }
+        })
+    };
+    edges_meet(t1, t2) || edges_meet(t2, t1)
+}
+
+/// What a zero-area triangle degenerates to, decided exactly: `None` for a
+/// proper triangle, else the segment between its extreme corners (both ends
+/// equal for a point).
+fn degenerate(t: &Triangle) -> Option<[Vec3; 2]> {
+    let [a, b, c] = t.v;
+    // The cross product is zero iff all three projected orientations are.
+    if (0..3).any(|k| orient2(a, b, c, k) != 0) {
+        return None;
+    }
+    // Collinear: the extreme points along an axis where they differ.
+    let k = (0..3).find(|&k| a[k] != b[k] || a[k] != c[k]).unwrap_or(0);
+    let (mut lo, mut hi) = (a, a);
+    for p in [b, c] {
+        if p[k] < lo[k] {
+            lo = p;
+        }
+        if p[k] > hi[k] {
+            hi = p;
+        }
+    }
+    Some([lo, hi])
+}
+
+/// Guigue & Devillers (2003) for two non-degenerate triangles. Every branch
+/// reads one exact orientation sign.
+fn guigue_devillers(t1: &Triangle, t2: &Triangle) -> bool {
+    let [p1, q1, r1] = t1.v;
+    let [p2, q2, r2] = t2.v;
+    let (dp1, dq1, dr1) = (
+        orient3(p2, q2, r2, p1),
+        orient3(p2, q2, r2, q1),
+        orient3(p2, q2, r2, r1),
+    );
+    if strictly_one_side(dp1, dq1, dr1) {
+        return false;
+    }
+    let (dp2, dq2, dr2) = (
+        orient3(p1, q1, r1, p2),
+        orient3(p1, q1, r1, q2),
+        orient3(p1, q1, r1, r2),
+    );
+    if strictly_one_side(dp2, dq2, dr2) {
+        return false;
+    }
+    if dp1 == 0 && dq1 == 0 && dr1 == 0 {
+        return coplanar(t1, t2);
+    }
+    // Rotate triangle 1 so that p1 is alone on its side of plane 2, and swap
+    // q2/r2 so that p1 is on the positive side.
+    let d2 = (dp2, dq2, dr2);
+    let d2s = (dp2, dr2, dq2);
+    if dp1 > 0 {
+        if dq1 > 0 {
+            tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2)
+        } else if dr1 > 0 {
+            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2)
+        } else {
+            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2)
+        }
+    } else if dp1 < 0 {
+        if dq1 < 0 {
+            tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2)
+        } else if dr1 < 0 {
+            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2)
+        } else {
+            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2)
+        }
+    } else if dq1 < 0 {
+        if dr1 >= 0 {
+            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2)
+        } else {
+            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2)
+        }
+    } else if dq1 > 0 {
+        if dr1 > 0 {
+            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2)
+        } else {
+            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2)
+        }
+    } else if dr1 > 0 {
+        tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2)
+    } else {
+        tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2)
+    }
+}
+
+fn strictly_one_side(a: i8, b: i8, c: i8) -> bool {
+    (a > 0 && b > 0 && c > 0) || (a < 0 && b < 0 && c < 0)
+}
+
+/// Second permutation step: put p2 alone on its side of plane 1, then compare
+/// the two intervals on the planes' common line with two orientation signs.
+fn tri_tri_3d(
+    [p1, q1, r1]: [Vec3; 3],
+    [p2, q2, r2]: [Vec3; 3],
+    (dp2, dq2, dr2): (i8, i8, i8),
+    t1: &Triangle,
+    t2: &Triangle,
+) -> bool {
+    let check = |[p1, q1, r1]: [Vec3; 3], [p2, q2, r2]: [Vec3; 3]| {
+        orient3(q1, p2, p1, q2) <= 0 && orient3(p1, p2, r1, r2) <= 0
+    };
+    if dp2 > 0 {
+        if dq2 > 0 {
+            check([p1, r1, q1], [r2, p2, q2])
+        } else if dr2 > 0 {
+            check([p1, r1, q1], [q2, r2, p2])
+        } else {
+            check([p1, q1, r1], [p2, q2, r2])
+        }
+    } else if dp2 < 0 {
+        if dq2 < 0 {
+            check([p1, q1, r1], [r2, p2, q2])
+        } else if dr2 < 0 {
+            check([p1, q1, r1], [q2, r2, p2])
+        } else {
+            check([p1, r1, q1], [p2, q2, r2])
+        }
+    } else if dq2 < 0 {
+        if dr2 >= 0 {
+            check([p1, r1, q1], [q2, r2, p2])
+        } else {
+            check([p1, q1, r1], [p2, q2, r2])
+        }
+    } else if dq2 > 0 {
+        if dr2 > 0 {
+            check([p1, r1, q1], [p2, q2, r2])
+        } else {
+            check([p1, q1, r1], [q2, r2, p2])
+        }
+    } else if dr2 > 0 {
+        check([p1, q1, r1], [r2, p2, q2])
+    } else if dr2 < 0 {
+        check([p1, r1, q1], [r2, p2, q2])
+    } else {
+        coplanar(t1, t2)
+    }
+}
+
+/// Two coplanar, non-degenerate triangles: in the projection that keeps
+/// triangle 1 non-degenerate (then it is one-to-one on the common plane),
+/// they meet iff two edges cross or a vertex of one lies in the other.
+fn coplanar(t1: &Triangle, t2: &Triangle) -> bool {
+    let k = projection_axis(t1);
+    (0..3).any(|i| {
+        let e = [t1.v[i], t1.v[(i + 1) % 3]];
+        (0..3).any(|j| segments_intersect_2d(e, [t2.v[j], t2.v[(j + 1) % 3]], k))
+    }) || point_in_triangle_2d(t1.v[0], t2, k)
+        || point_in_triangle_2d(t2.v[0], t1, k)
+}
+
+/// An axis along which the (non-degenerate) triangle projects to a
+/// non-degenerate triangle.
+fn projection_axis(t: &Triangle) -> usize {
+    (0..3)
+        .find(|&k| orient2(t.v[0], t.v[1], t.v[2], k) != 0)
+        .unwrap_or(2)
+}
+
+/// Segment (possibly a point) against a non-degenerate triangle.
+fn segment_triangle([s0, s1]: [Vec3; 2], t: &Triangle) -> bool {
+    let [a, b, c] = t.v;
+    let (d0, d1) = (orient3(a, b, c, s0), orient3(a, b, c, s1));
+    if d0 * d1 > 0 {
+        return false;
+    }
+    if d0 == 0 && d1 == 0 {
+        let k = projection_axis(t);
+        return point_in_triangle_2d(s0, t, k)
+            || point_in_triangle_2d(s1, t, k)
+            || (0..3).any(|i| segments_intersect_2d([s0, s1], [t.v[i], t.v[(i + 1) % 3]], k));
+    }
+    // The segment meets the plane in exactly one point; the line through it
+    // passes through the closed triangle iff it is on the same side of all
+    // three edges (zeros allowed).
+    let e = [
+        orient3(s0, s1, a, b),
+        orient3(s0, s1, b, c),
+        orient3(s0, s1, c, a),
+    ];
+    e.iter().all(|&x| x >= 0) || e.iter().all(|&x| x <= 0)
+}
+
+/// Two segments (either may be a point) in 3-D. Segments that meet are
+/// coplanar; coplanar segments meet iff they meet in all three axis
+/// projections (at least one projection is one-to-one on their plane).
+fn segments_intersect(s: [Vec3; 2], t: [Vec3; 2]) -> bool {
+    orient3(s[0], s[1], t[0], t[1]) == 0 && (0..3).all(|k| segments_intersect_2d(s, t, k))
+}
+
+/// Closed segments in the projection along axis `k`.
+fn segments_intersect_2d([p1, q1]: [Vec3; 2], [p2, q2]: [Vec3; 2], k: usize) -> bool {
+    let o1 = orient2(p1, q1, p2, k);
+    let o2 = orient2(p1, q1, q2, k);
+    let o3 = orient2(p2, q2, p1, k);
+    let o4 = orient2(p2, q2, q1, k);
+    if o1 * o2 < 0 && o3 * o4 < 0 {
+        return true;
+    }
+    (o1 == 0 && within(p2, p1, q1, k))
+        || (o2 == 0 && within(q2, p1, q1, k))
+        || (o3 == 0 && within(p1, p2, q2, k))
+        || (o4 == 0 && within(q1, p2, q2, k))
+}
+
+/// For a point collinear with segment `ab` (in projection `k`): whether it
+/// lies in the segment's bounding rectangle, i.e. on the segment.
+fn within(p: Vec3, a: Vec3, b: Vec3, k: usize) -> bool {
+    let (u, v) = plane_axes(k);
+    let inside = |i: usize| a[i].min(b[i]) <= p[i] && p[i] <= a[i].max(b[i]);
+    inside(u) && inside(v)
+}
+
+/// Closed, non-degenerate triangle in projection `k`.
+fn point_in_triangle_2d(p: Vec3, t: &Triangle, k: usize) -> bool {
+    let [a, b, c] = t.v;
+    let o = [
+        orient2(a, b, p, k),
+        orient2(b, c, p, k),
+        orient2(c, a, p, k),
+    ];
+    o.iter().all(|&x| x >= 0) || o.iter().all(|&x| x <= 0)
+}
+
+/// The two kept axes when projecting along `k`, in cyclic order so that the
+/// 2-D orientation equals the `k`-th component of the 3-D cross product.
+#[inline]
+fn plane_axes(k: usize) -> (usize, usize) {
+    ((k + 1) % 3, (k + 2) % 3)
+}
+
+#[inline]
+fn c2(p: Vec3, k: usize) -> Coord<f32> {
+    let (u, v) = plane_axes(k);
+    Coord { x: p[u], y: p[v] }
+}
+
+#[inline]
+fn c3(p: Vec3) -> Coord3D<f32> {
+    Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+#[inline]
+fn sign(v: f64) -> i8 {
+    if v > 0.0 {
+        1
+    } else if v < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orientation_signs_follow_the_right_hand_rule() {
+        assert_eq!(orient3(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z), 1);
+        assert_eq!(orient3(Vec3::ZERO, Vec3::Y, Vec3::X, Vec3::Z), -1);
+        assert_eq!(orient3(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X * 3.0), 0);
+        // orient2 along k equals the k-th cross-product component.
+        let (a, b, c) = (
+            Vec3::ZERO,
+            Vec3::new(1.0, 2.0, 0.5),
+            Vec3::new(-1.0, 0.5, 2.0),
+        );
+        let n = (b - a).cross(c - a);
+        for k in 0..3 {
+            assert_eq!(orient2(a, b, c, k), sign(n[k] as f64), "axis {k}");
+        }
+    }
+
+    #[test]
+    fn degenerate_shapes_are_recognised() {
+        let seg = Triangle::new(Vec3::ZERO, Vec3::splat(2.0), Vec3::ONE);
+        assert_eq!(degenerate(&seg), Some([Vec3::ZERO, Vec3::splat(2.0)]));
+        assert_eq!(
+            degenerate(&Triangle::new(Vec3::ONE, Vec3::ONE, Vec3::ONE)),
+            Some([Vec3::ONE; 2])
+        );
+        assert_eq!(
+            degenerate(&Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)),
+            None
+        );
+    }
+}

@@ -1,0 +1,404 @@
+//! Ray casts: the closest primitive hit by a ray, or any hit at all.
+//!
+//! The answer is defined by the primitive test alone ([`RayTarget`]): the
+//! smallest hit distance `t` in `[0, t_max]`, ties going to the lowest
+//! primitive index. The tree only prunes: its slab test runs on each node's
+//! enclosing box, padded so that rounding never rejects a box whose primitive
+//! the `f64` primitive test would hit, and handles rays parallel to a slab
+//! without dividing by zero.
+
+use super::heap::{MinHeap, BEST_FIRST_QUEUE};
+use super::Tally;
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::Triangle;
+use crate::tree::{Bvh, MAX_DEPTH};
+use crate::{Error, Sphere};
+use glam::Vec3;
+
+/// A ray `origin + t * dir` for `t` in `[0, t_max]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Start point.
+    pub origin: Vec3,
+    /// Direction (need not be unit length; `t` is measured in its units).
+    pub dir: Vec3,
+    /// Largest `t` of interest (may be infinite).
+    pub t_max: f32,
+}
+
+impl Ray {
+    /// A ray, checked: finite origin, finite non-zero direction, `t_max >= 0`
+    /// and not NaN.
+    pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Result<Ray, Error> {
+        if !origin.is_finite()
+            || !dir.is_finite()
+            || dir == Vec3::ZERO
+            || t_max.is_nan()
+            || t_max < 0.0
+        {
+            return Err(Error::InvalidConfig(
+                "a ray needs a finite origin, a finite non-zero direction and t_max >= 0",
+            ));
+        }
+        Ok(Ray { origin, dir, t_max })
+    }
+}
+
+/// A ray hit: which primitive, and where along the ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Primitive index.
+    pub prim: u32,
+    /// Distance along the ray, in units of `dir`.
+    pub t: f32,
+}
+
+impl Hit {
+    /// Whether `self` beats `other` (smaller `t`, then smaller index).
+    fn before(&self, other: &Option<Hit>) -> bool {
+        match other {
+            None => true,
+            Some(o) => self.t < o.t || (self.t == o.t && self.prim < o.prim),
+        }
+    }
+}
+
+/// A primitive a ray can hit.
+pub trait RayTarget {
+    /// The smallest `t` in `[0, ray.t_max]` where the ray meets the primitive.
+    fn ray_hit(&self, ray: &Ray) -> Option<f32>;
+}
+
+impl RayTarget for Triangle {
+    /// Möller–Trumbore in `f64`. A ray in the triangle's plane does not hit it
+    /// (it would touch only an edge, a set of zero area).
+    fn ray_hit(&self, ray: &Ray) -> Option<f32> {
+        let [a, b, c] = self.v.map(|p| p.as_dvec3());
+        let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+        let (e1, e2) = (b - a, c - a);
+        let p = d.cross(e2);
+        let det = e1.dot(p);
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let s = o - a;
+        let u = s.dot(p) * inv;
+        if !(0.0..=1.0).contains(&u) {
+            return None;
+        }
+        let q = s.cross(e1);
+        let v = d.dot(q) * inv;
+        if v < 0.0 || u + v > 1.0 {
+            return None;
+        }
+        within(e2.dot(q) * inv, ray)
+    }
+}
+
+impl RayTarget for Sphere {
+    /// Entry point, or `t = 0` when the ray starts inside.
+    fn ray_hit(&self, ray: &Ray) -> Option<f32> {
+        let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+        let m = o - self.center.as_dvec3();
+        let r = self.radius as f64;
+        let c = m.length_squared() - r * r;
+        if c <= 0.0 {
+            return Some(0.0);
+        }
+        let (a, b) = (d.length_squared(), m.dot(d));
+        let disc = b * b - a * c;
+        if b > 0.0 || disc < 0.0 {
+            return None;
+        }
+        within((-b - libm::sqrt(disc)) / a, ray)
+    }
+}
+
+impl RayTarget for Aabb {
+    /// Entry point, or `t = 0` when the ray starts inside.
+    fn ray_hit(&self, ray: &Ray) -> Option<f32> {
+        let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+        let (lo, hi) = (self.min.as_dvec3(), self.max.as_dvec3());
+        let (mut t0, mut t1) = (0.0f64, ray.t_max as f64);
+        for k in 0..3 {
+            if d[k] == 0.0 {
+                if o[k] < lo[k] || o[k] > hi[k] {
+                    return None;
+                }
+                continue;
+            }
+            let (a, b) = ((lo[k] - o[k]) / d[k], (hi[k] - o[k]) / d[k]);
+            t0 = t0.max(a.min(b));
+            t1 = t1.min(a.max(b));
+            if t0 > t1 {
+                return None;
+            }
+        }
+        within(t0, ray)
+    }
+}
+
+impl<P: RayTarget> RayTarget for &P {
+    fn ray_hit(&self, ray: &Ray) -> Option<f32> {
+        (**self).ray_hit(ray)
+    }
+}
+
+fn within(t: f64, ray: &Ray) -> Option<f32> {
+    let t32 = t as f32;
+    (t >= 0.0 && t32 <= ray.t_max).then_some(t32)
+}
+
+/// The node test: the ray's parameter interval inside `b` (padded), as its
+/// entry `t`, or `None` when the ray misses.
+#[inline]
+fn slab(b: &Aabb, ray: &Ray, inv: Vec3) -> Option<f32> {
+    // 2 * gamma(3) of PBRT, rounded up, plus a pad of 2^-20 of each
+    // coordinate's size that covers the f64 primitive test's rounding.
+    const WIDEN: f32 = 4.0e-7;
+    let pad = b.min.abs().max(b.max.abs()) * (1.0 / 1_048_576.0);
+    let (lo, hi) = (b.min - pad, b.max + pad);
+    let (mut t0, mut t1) = (0.0f32, ray.t_max + ray.t_max * WIDEN);
+    for k in 0..3 {
+        if ray.dir[k] == 0.0 {
+            if ray.origin[k] < lo[k] || ray.origin[k] > hi[k] {
+                return None;
+            }
+            continue;
+        }
+        let a = (lo[k] - ray.origin[k]) * inv[k];
+        let c = (hi[k] - ray.origin[k]) * inv[k];
+        let (near, far) = if a <= c { (a, c) } else { (c, a) };
+        // f32::max/min ignore a NaN operand (0 * inf), which keeps the box.
+        t0 = t0.max(near - near.abs() * WIDEN);
+        t1 = t1.min(far + far.abs() * WIDEN);
+        if t0 > t1 {
+            return None;
+        }
+    }
+    Some(t0)
+}
+
+/// How a ray query orders the nodes it visits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RayOrder {
+    /// Depth-first, nearer child first, pruning by the best hit so far.
+    #[default]
+    DepthFirst,
+    /// Best-first: always open the node with the smallest entry distance
+    /// (a fixed queue of [`BEST_FIRST_QUEUE`] entries; when it is full the
+    /// overflow is searched depth-first, so nothing is skipped).
+    BestFirst,
+}
+
+impl<B: BoundingVolume> Bvh<'_, B> {
+    /// The closest primitive the ray hits, or `None`. The answer equals
+    /// [`brute_force::ray_closest`](crate::brute_force::ray_closest) for every
+    /// volume type and order; `tally` counts the node tests (`Nv`) and
+    /// primitive tests (`Np`).
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Node, TopDown, Triangle};
+    /// use bvhkit::query::{Ray, RayOrder};
+    /// use glam::Vec3;
+    /// // A row of walls along x, at x = 0, 2, 4, ...
+    /// let walls: Vec<Triangle> = (0..8).map(|i| {
+    ///     let x = i as f32 * 2.0;
+    ///     Triangle::new(Vec3::new(x, -5.0, -5.0), Vec3::new(x, 5.0, -5.0), Vec3::new(x, 0.0, 5.0))
+    /// }).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
+    /// let mut idx = vec![0; 8];
+    /// let bvh = TopDown::default().with_max_leaf_size(1).build(&walls, &mut nodes, &mut idx)?;
+    /// let ray = Ray::new(Vec3::new(5.0, 0.0, 0.0), Vec3::X, f32::INFINITY)?;
+    /// let hit = bvh.cast_ray(&walls, &ray, RayOrder::BestFirst, ())?.unwrap();
+    /// assert_eq!((hit.prim, hit.t), (3, 1.0));
+    /// assert!(bvh.ray_hits_any(&walls, &Ray::new(Vec3::ZERO, -Vec3::X, 0.5)?, ())?.is_some());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn cast_ray<P: RayTarget>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        order: RayOrder,
+        mut tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        self.check_query(prims.len())?;
+        let inv = ray.dir.recip();
+        let nodes = self.nodes();
+        let mut best: Option<Hit> = None;
+        tally.bv_tests(1);
+        let Some(t_root) = slab(&nodes[0].bv.aabb(), ray, inv) else {
+            return Ok(None);
+        };
+        let leaf = |node: u32, best: &mut Option<Hit>, tally: &mut dyn FnMut(u32)| {
+            let prims_here = self.leaf_primitives(&nodes[node as usize]);
+            tally(prims_here.len() as u32);
+            for &p in prims_here {
+                if let Some(t) = prims[p as usize].ray_hit(ray) {
+                    let h = Hit { prim: p, t };
+                    if h.before(best) {
+                        *best = Some(h);
+                    }
+                }
+            }
+        };
+        let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
+        match order {
+            RayOrder::DepthFirst => {
+                let mut stack = [(0u32, 0f32); MAX_DEPTH + 1];
+                stack[0] = (0, t_root);
+                let mut top = 1;
+                while top > 0 {
+                    top -= 1;
+                    let (n, t) = stack[top];
+                    if beaten(t, &best) {
+                        continue;
+                    }
+                    match nodes[n as usize].children() {
+                        None => leaf(n, &mut best, &mut |k| tally.prim_tests(k)),
+                        Some((l, r)) => {
+                            tally.bv_tests(2);
+                            let tl = slab(&nodes[l as usize].bv.aabb(), ray, inv);
+                            let tr = slab(&nodes[r as usize].bv.aabb(), ray, inv);
+                            // Push the farther child first so the nearer is opened first.
+                            let mut kids = [(l, tl), (r, tr)];
+                            if tl.unwrap_or(f32::INFINITY) < tr.unwrap_or(f32::INFINITY) {
+                                kids.swap(0, 1);
+                            }
+                            for (c, tc) in kids {
+                                if let Some(tc) = tc {
+                                    *stack.get_mut(top).ok_or(Error::StackOverflow {
+                                        depth: self.depth(),
+                                        capacity: MAX_DEPTH + 1,
+                                    })? = (c, tc);
+                                    top += 1;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            RayOrder::BestFirst => {
+                let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
+                heap.push(t_root as f64, 0);
+                while let Some((t, n)) = heap.pop() {
+                    if beaten(t as f32, &best) {
+                        // Every queued node is at least this far: done.
+                        break;
+                    }
+                    match nodes[n as usize].children() {
+                        None => leaf(n, &mut best, &mut |k| tally.prim_tests(k)),
+                        Some((l, r)) => {
+                            tally.bv_tests(2);
+                            for c in [l, r] {
+                                let Some(tc) = slab(&nodes[c as usize].bv.aabb(), ray, inv) else {
+                                    continue;
+                                };
+                                if !heap.push(tc as f64, c) {
+                                    // Queue full: search this subtree depth-first now.
+                                    let sub =
+                                        self.subtree_ray(prims, ray, inv, c, best, &mut tally)?;
+                                    best = sub;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(best)
+    }
+
+    /// Depth-first closest hit below `root`, starting from `best`.
+    fn subtree_ray<P: RayTarget>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        inv: Vec3,
+        root: u32,
+        mut best: Option<Hit>,
+        tally: &mut impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        let nodes = self.nodes();
+        let mut stack = [0u32; MAX_DEPTH + 1];
+        stack[0] = root;
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top];
+            tally.bv_tests(1);
+            match slab(&nodes[n as usize].bv.aabb(), ray, inv) {
+                Some(t) if !best.is_some_and(|b| t > b.t) => {}
+                _ => continue,
+            }
+            match nodes[n as usize].children() {
+                None => {
+                    let here = self.leaf_primitives(&nodes[n as usize]);
+                    tally.prim_tests(here.len() as u32);
+                    for &p in here {
+                        if let Some(t) = prims[p as usize].ray_hit(ray) {
+                            let h = Hit { prim: p, t };
+                            if h.before(&best) {
+                                best = Some(h);
+                            }
+                        }
+                    }
+                }
+                Some((l, r)) => {
+                    for c in [r, l] {
+                        *stack.get_mut(top).ok_or(Error::StackOverflow {
+                            depth: self.depth(),
+                            capacity: MAX_DEPTH + 1,
+                        })? = c;
+                        top += 1;
+                    }
+                }
+            }
+        }
+        Ok(best)
+    }
+
+    /// Some primitive the ray hits (not necessarily the closest), or `None`:
+    /// stops at the first hit (shadow and line-of-sight rays).
+    pub fn ray_hits_any<P: RayTarget>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        mut tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        self.check_query(prims.len())?;
+        let inv = ray.dir.recip();
+        let nodes = self.nodes();
+        let mut stack = [0u32; MAX_DEPTH + 1];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top];
+            tally.bv_tests(1);
+            if slab(&nodes[n as usize].bv.aabb(), ray, inv).is_none() {
+                continue;
+            }
+            match nodes[n as usize].children() {
+                None => {
+                    for &p in self.leaf_primitives(&nodes[n as usize]) {
+                        tally.prim_tests(1);
+                        if let Some(t) = prims[p as usize].ray_hit(ray) {
+                            return Ok(Some(Hit { prim: p, t }));
+                        }
+                    }
+                }
+                Some((l, r)) => {
+                    for c in [r, l] {
+                        *stack.get_mut(top).ok_or(Error::StackOverflow {
+                            depth: self.depth(),
+                            capacity: MAX_DEPTH + 1,
+                        })? = c;
+                        top += 1;
+                    }
+                }
+            }
+        }
+        Ok(None)
+    }
+}

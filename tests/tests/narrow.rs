@@ -1,0 +1,251 @@
+//! The exact triangle–triangle test against two references:
+//! - an independent exact test (edges against triangles, same predicates);
+//! - a separating-axis test in `f64`, exact for small integer coordinates.
+//!
+//! Small integer grids make coplanar, touching, shared-edge, shared-vertex and
+//! zero-area cases common instead of rare.
+
+use bvhkit::glam::{DVec3, Vec3};
+use bvhkit::narrow::{triangles_intersect, triangles_intersect_by_edges};
+use bvhkit::{Intersects, Triangle};
+use bvhkit_tests::proptest_config;
+use proptest::prelude::*;
+
+/// Separating-axis test in f64 for non-degenerate triangles. Candidate axes:
+/// both normals, the nine edge-edge cross products, and each normal crossed
+/// with its own edges (needed when the triangles are coplanar). Touching
+/// counts as intersecting. Exact when all products fit in 53 bits.
+fn sat_f64(t1: &Triangle, t2: &Triangle) -> bool {
+    let p: Vec<DVec3> = t1.v.iter().map(|v| v.as_dvec3()).collect();
+    let q: Vec<DVec3> = t2.v.iter().map(|v| v.as_dvec3()).collect();
+    let e1 = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
+    let e2 = [q[1] - q[0], q[2] - q[1], q[0] - q[2]];
+    let (n1, n2) = (e1[0].cross(e1[1]), e2[0].cross(e2[1]));
+    let mut axes = vec![n1, n2];
+    for a in e1 {
+        for b in e2 {
+            axes.push(a.cross(b));
+        }
+    }
+    for a in e1 {
+        axes.push(n1.cross(a));
+    }
+    for b in e2 {
+        axes.push(n2.cross(b));
+    }
+    let range = |pts: &[DVec3], ax: DVec3| {
+        let d: Vec<f64> = pts.iter().map(|x| x.dot(ax)).collect();
+        (
+            d.iter().cloned().fold(f64::INFINITY, f64::min),
+            d.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        )
+    };
+    !axes.into_iter().filter(|a| *a != DVec3::ZERO).any(|ax| {
+        let (lo1, hi1) = range(&p, ax);
+        let (lo2, hi2) = range(&q, ax);
+        hi1 < lo2 || hi2 < lo1
+    })
+}
+
+fn non_degenerate(t: &Triangle) -> bool {
+    let (a, b, c) = (t.v[0].as_dvec3(), t.v[1].as_dvec3(), t.v[2].as_dvec3());
+    (b - a).cross(c - a) != DVec3::ZERO
+}
+
+fn grid_point(r: i32) -> impl Strategy<Value = Vec3> {
+    (-r..=r, -r..=r, -r..=r).prop_map(|(x, y, z)| Vec3::new(x as f32, y as f32, z as f32))
+}
+
+fn grid_triangle(r: i32) -> impl Strategy<Value = Triangle> {
+    (grid_point(r), grid_point(r), grid_point(r)).prop_map(|(a, b, c)| Triangle::new(a, b, c))
+}
+
+/// A second triangle sharing a vertex or an edge with the first, or lying in
+/// its plane (z = 0 grid), to force the delicate cases.
+fn related_pair() -> impl Strategy<Value = (Triangle, Triangle)> {
+    (grid_triangle(3), grid_point(3), grid_point(3), 0..4u8).prop_map(|(t, p, q, kind)| {
+        let flat = |v: Vec3| Vec3::new(v.x, v.y, 0.0);
+        match kind {
+            0 => (t, Triangle::new(t.v[0], p, q)),
+            1 => (t, Triangle::new(t.v[0], t.v[1], p)),
+            2 => (
+                Triangle::new(flat(t.v[0]), flat(t.v[1]), flat(t.v[2])),
+                Triangle::new(flat(p), flat(q), flat(t.v[2] + p)),
+            ),
+            _ => (t, Triangle::new(p, q, (t.v[0] + t.v[1]) * 0.5)),
+        }
+    })
+}
+
+proptest! {
+    #![proptest_config(proptest_config(3000))]
+
+    #[test]
+    fn agrees_with_the_edge_reference(t1 in grid_triangle(2), t2 in grid_triangle(2)) {
+        prop_assert_eq!(triangles_intersect(&t1, &t2), triangles_intersect_by_edges(&t1, &t2), "{:?} {:?}", t1, t2);
+        prop_assert_eq!(triangles_intersect(&t1, &t2), triangles_intersect(&t2, &t1), "symmetry");
+    }
+
+    #[test]
+    fn agrees_with_f64_separating_axes(t1 in grid_triangle(4), t2 in grid_triangle(4)) {
+        prop_assume!(non_degenerate(&t1) && non_degenerate(&t2));
+        prop_assert_eq!(t1.intersects(&t2), sat_f64(&t1, &t2), "{:?} {:?}", t1, t2);
+    }
+
+    #[test]
+    fn delicate_cases_agree((t1, t2) in related_pair()) {
+        let exact = triangles_intersect(&t1, &t2);
+        prop_assert_eq!(exact, triangles_intersect_by_edges(&t1, &t2), "{:?} {:?}", t1, t2);
+        if non_degenerate(&t1) && non_degenerate(&t2) {
+            prop_assert_eq!(exact, sat_f64(&t1, &t2), "{:?} {:?}", t1, t2);
+        }
+    }
+
+    /// Random real-valued triangles, including cyclic reorderings and flips of
+    /// each triangle: the answer must not depend on vertex order.
+    #[test]
+    fn vertex_order_does_not_matter(
+        a in prop::array::uniform3((-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)),
+        b in prop::array::uniform3((-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)),
+    ) {
+        let t1 = Triangle::new(a[0].into(), a[1].into(), a[2].into());
+        let t2 = Triangle::new(b[0].into(), b[1].into(), b[2].into());
+        let want = triangles_intersect_by_edges(&t1, &t2);
+        for perm in [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]] {
+            let p2 = Triangle::new(t2.v[perm[0]], t2.v[perm[1]], t2.v[perm[2]]);
+            prop_assert_eq!(triangles_intersect(&t1, &p2), want);
+            prop_assert_eq!(triangles_intersect(&p2, &t1), want);
+        }
+        if non_degenerate(&t1) && non_degenerate(&t2) {
+            prop_assert_eq!(want, sat_f64(&t1, &t2));
+        }
+    }
+}
+
+fn tri(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Triangle {
+    Triangle::new(a.into(), b.into(), c.into())
+}
+
+#[test]
+fn hand_made_cases() {
+    let base = tri([0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]);
+    let cases = [
+        (
+            "crossing",
+            tri([1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [2.0, 1.0, 1.0]),
+            true,
+        ),
+        (
+            "shared vertex only",
+            tri([0.0, 0.0, 0.0], [-1.0, 0.0, 1.0], [0.0, -1.0, 1.0]),
+            true,
+        ),
+        (
+            "shared edge, folded",
+            tri([0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 0.0, 3.0]),
+            true,
+        ),
+        (
+            "vertex resting on the face",
+            tri([1.0, 1.0, 0.0], [1.0, 1.0, 2.0], [2.0, 2.0, 2.0]),
+            true,
+        ),
+        (
+            "edge touching an edge",
+            tri([2.0, 2.0, 0.0], [2.0, 2.0, 2.0], [5.0, 5.0, 1.0]),
+            true,
+        ),
+        (
+            "coplanar, overlapping",
+            tri([1.0, 1.0, 0.0], [5.0, 1.0, 0.0], [1.0, 5.0, 0.0]),
+            true,
+        ),
+        (
+            "coplanar, one inside the other",
+            tri([0.5, 0.5, 0.0], [1.0, 0.5, 0.0], [0.5, 1.0, 0.0]),
+            true,
+        ),
+        (
+            "coplanar, touching at a vertex",
+            tri([4.0, 0.0, 0.0], [5.0, 0.0, 0.0], [5.0, 1.0, 0.0]),
+            true,
+        ),
+        (
+            "coplanar, apart",
+            tri([3.0, 3.0, 0.0], [5.0, 3.0, 0.0], [3.0, 5.0, 0.0]),
+            false,
+        ),
+        (
+            "parallel planes",
+            tri([0.0, 0.0, 1.0], [4.0, 0.0, 1.0], [0.0, 4.0, 1.0]),
+            false,
+        ),
+        (
+            "above, not touching",
+            tri([1.0, 1.0, 0.5], [1.0, 1.0, 2.0], [2.0, 2.0, 2.0]),
+            false,
+        ),
+        (
+            "zero-area segment piercing",
+            tri([1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [1.0, 1.0, 0.0]),
+            true,
+        ),
+        (
+            "zero-area segment beside",
+            tri([5.0, 5.0, -1.0], [5.0, 5.0, 1.0], [5.0, 5.0, 0.0]),
+            false,
+        ),
+        (
+            "point on the face",
+            tri([1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 1.0, 0.0]),
+            true,
+        ),
+        (
+            "point off the face",
+            tri([1.0, 1.0, 1e-7], [1.0, 1.0, 1e-7], [1.0, 1.0, 1e-7]),
+            false,
+        ),
+    ];
+    for (name, t, want) in cases {
+        assert_eq!(base.intersects(&t), want, "{name}");
+        assert_eq!(t.intersects(&base), want, "{name} (swapped)");
+        assert_eq!(
+            triangles_intersect_by_edges(&base, &t),
+            want,
+            "{name} (edge reference)"
+        );
+        if non_degenerate(&t) {
+            assert_eq!(sat_f64(&base, &t), want, "{name} (f64 reference)");
+        }
+    }
+    // Two degenerate triangles: collinear overlapping segments, crossing
+    // segments, and points.
+    let s1 = tri([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.0, 0.0]);
+    let s2 = tri([1.5, 0.0, 0.0], [3.0, 0.0, 0.0], [3.0, 0.0, 0.0]);
+    let s3 = tri([1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 1.0, 0.0]);
+    let s4 = tri([1.0, -1.0, 1.0], [1.0, 1.0, 1.0], [1.0, 0.0, 1.0]);
+    assert!(s1.intersects(&s2) && s1.intersects(&s3) && !s1.intersects(&s4));
+    let p = tri([2.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+    assert!(p.intersects(&s1) && p.intersects(&s2) && !p.intersects(&s3) && p.intersects(&p));
+}
+
+/// Near-touching at huge and tiny scales: a floating-point test with an
+/// epsilon gets one of these wrong; the exact test gets all right.
+#[test]
+fn exact_at_every_scale() {
+    for scale in [1e-30f32, 1e-3, 1.0, 1e5, 1e30] {
+        let s = |v: [f32; 3]| Vec3::from(v) * scale;
+        let base = Triangle::new(s([0.0, 0.0, 0.0]), s([4.0, 0.0, 0.0]), s([0.0, 4.0, 0.0]));
+        let touching = Triangle::new(s([1.0, 1.0, 0.0]), s([1.0, 1.0, 2.0]), s([2.0, 2.0, 2.0]));
+        assert!(base.intersects(&touching), "touching at scale {scale}");
+        let lifted = Triangle {
+            v: touching
+                .v
+                .map(|v| Vec3::new(v.x, v.y, v.z.next_up().max(f32::from_bits(1)))),
+        };
+        assert!(
+            !base.intersects(&lifted),
+            "lifted by one ulp at scale {scale}"
+        );
+    }
+}

@@ -1,0 +1,199 @@
+//! Single-tree queries against brute force: region search in every order,
+//! ray casts (closest and any hit, depth- and best-first), and nearest
+//! primitive, for every volume type and random builder configurations.
+
+use bvhkit::glam::Vec3;
+use bvhkit::{
+    brute_force, Aabb, BoundingVolume, Counts, Dop14, Obb, Order, Ray, RayOrder, Sphere, TopDown,
+    Triangle,
+};
+use bvhkit_tests::*;
+use proptest::prelude::*;
+
+fn direction() -> impl Strategy<Value = Vec3> {
+    prop_oneof![
+        // Axis-parallel rays: two direction components are exactly zero.
+        (0..6usize).prop_map(|k| {
+            let mut d = Vec3::ZERO;
+            d[k % 3] = if k < 3 { 1.0 } else { -1.0 };
+            d
+        }),
+        // One zero component.
+        (-1.0f32..1.0, -1.0f32..1.0).prop_map(|(x, y)| Vec3::new(x, y, 0.0) + Vec3::X * 1e-3),
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
+            .prop_map(|(x, y, z)| Vec3::new(x, y, z) + Vec3::splat(1e-3)),
+    ]
+}
+
+fn check<B: BoundingVolume>(
+    cfg: &TopDown,
+    prims: &[Triangle],
+    probe: (f32, f32, f32),
+    dir: Vec3,
+    t_max: Option<f32>,
+) -> Result<(), TestCaseError> {
+    let (nodes, idx, _) =
+        build::<B, _>(cfg, prims).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    let tree = open(&nodes, &idx, prims);
+    let bounds = region_in(prims, 0.0, 1.0);
+    // A probe point in (or just outside) the scene's box; snapped to a
+    // primitive corner one time in four, so rays graze edges and faces.
+    let mut point =
+        bounds.min + bounds.extent() * (Vec3::new(probe.0, probe.1, probe.2) * 1.2 - 0.1);
+    if probe.0 < 0.25 {
+        point = prims[(probe.1 * prims.len() as f32) as usize % prims.len()].v[0];
+    }
+
+    // Region search: every order, same set as brute force.
+    let region = region_in(prims, probe.0.min(probe.1), probe.0.max(probe.1));
+    let mut want = Vec::new();
+    brute_force::overlapping(prims, &region, |i| want.push(i));
+    let mut queue = vec![0u32; tree.breadth_first_queue()];
+    for order in [
+        Order::DepthFirst,
+        Order::Recursive,
+        Order::BreadthFirst(&mut queue),
+    ] {
+        let name = format!("{order:?}");
+        let mut got = Vec::new();
+        let mut counts = Counts::default();
+        let n = tree
+            .search(prims, &region, order, &mut counts, |i| got.push(i))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(n, got.len());
+        prop_assert_eq!(&got, &want, "{} search on {} tree {:?}", name, B::NAME, cfg);
+        prop_assert!(counts.bv_tests >= 1);
+    }
+    let mut tiny = [0u32; 0];
+    let too_small = tree.search(prims, &region, Order::BreadthFirst(&mut tiny), (), |_| {});
+    prop_assert!(too_small.is_err());
+
+    // Rays.
+    let ray = Ray::new(
+        point - dir * bounds.extent().max_element() * 0.3,
+        dir,
+        t_max.unwrap_or(f32::INFINITY),
+    )
+    .unwrap();
+    let want = brute_force::ray_closest(prims, &ray);
+    for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+        let got = tree.cast_ray(prims, &ray, order, ()).unwrap();
+        prop_assert_eq!(
+            got,
+            want,
+            "{:?} ray on {} tree {:?} {:?}",
+            order,
+            B::NAME,
+            cfg,
+            ray
+        );
+    }
+    let any = tree.ray_hits_any(prims, &ray, ()).unwrap();
+    prop_assert_eq!(any.is_some(), want.is_some());
+    if let Some(h) = any {
+        prop_assert_eq!(
+            bvhkit::RayTarget::ray_hit(&prims[h.prim as usize], &ray),
+            Some(h.t)
+        );
+    }
+
+    // Nearest primitive.
+    let want = brute_force::nearest(prims, point);
+    let got = tree.nearest(prims, point, ()).unwrap();
+    prop_assert_eq!(got, want, "nearest on {} tree {:?}", B::NAME, cfg);
+    Ok(())
+}
+
+fn t_max() -> impl Strategy<Value = Option<f32>> {
+    prop_oneof![Just(None), (0.0f32..100.0).prop_map(Some)]
+}
+
+proptest! {
+    #![proptest_config(proptest_config(64))]
+
+    #[test]
+    fn single_tree_queries_match_brute_force(
+        cfg in any_top_down(), prims in scene(50),
+        probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0), dir in direction(), t in t_max(),
+    ) {
+        check::<Aabb>(&cfg, &prims, probe, dir, t)?;
+        check::<Sphere>(&cfg, &prims, probe, dir, t)?;
+        check::<Obb>(&cfg, &prims, probe, dir, t)?;
+        check::<Dop14>(&cfg, &prims, probe, dir, t)?;
+    }
+
+    /// Integer grids: rays start on slab planes and run along box faces.
+    #[test]
+    fn grid_rays_graze_exactly(
+        tris in prop::collection::vec(
+            ((-3i32..3, -3i32..3, -3i32..3), 0..3usize).prop_map(|((x, y, z), k)| {
+                let o = Vec3::new(x as f32, y as f32, z as f32);
+                let (u, v) = (Vec3::AXES[(k + 1) % 3], Vec3::AXES[(k + 2) % 3]);
+                Triangle::new(o, o + u, o + v)
+            }), 1..40),
+        origin in (-4i32..4, -4i32..4, -4i32..4), axis in 0..6usize,
+    ) {
+        let tree_cfg = TopDown::default().with_max_leaf_size(1);
+        let (nodes, idx, _) = build::<Aabb, _>(&tree_cfg, &tris).unwrap();
+        let tree = open(&nodes, &idx, &tris);
+        let mut dir = Vec3::ZERO;
+        dir[axis % 3] = if axis < 3 { 1.0 } else { -1.0 };
+        let o = Vec3::new(origin.0 as f32, origin.1 as f32, origin.2 as f32) + Vec3::splat(0.25) - dir * 0.25;
+        let ray = Ray::new(o, dir, f32::INFINITY).unwrap();
+        let want = brute_force::ray_closest(&tris, &ray);
+        prop_assert_eq!(tree.cast_ray(&tris, &ray, RayOrder::DepthFirst, ()).unwrap(), want);
+        prop_assert_eq!(tree.cast_ray(&tris, &ray, RayOrder::BestFirst, ()).unwrap(), want);
+    }
+}
+
+/// Equidistant points defeat pruning, so the best-first queue (64 entries)
+/// overflows and the depth-first fallback must keep the answer exact.
+#[test]
+fn best_first_queue_overflow_keeps_the_answer() {
+    let n = 4000;
+    let pts: Vec<Vec3> = (0..n)
+        .map(|i| {
+            let t = i as f32 * 2.399_963;
+            let z = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+            let r = (1.0 - z * z).sqrt();
+            Vec3::new(r * t.cos(), r * t.sin(), z) * 100.0
+        })
+        .collect();
+    let (nodes, idx, _) = build::<Sphere, _>(&TopDown::default(), &pts).unwrap();
+    let tree = open(&nodes, &idx, &pts);
+    for probe in [Vec3::ZERO, Vec3::new(1.0, 2.0, 3.0), Vec3::splat(200.0)] {
+        let mut counts = Counts::default();
+        let got = tree.nearest(&pts, probe, &mut counts).unwrap();
+        assert_eq!(got, brute_force::nearest(&pts, probe), "probe {probe}");
+        assert!(counts.prim_tests > 0);
+    }
+    // Rays through the centre: every box is entered at nearly the same t.
+    let tris: Vec<Triangle> = pts
+        .iter()
+        .map(|&p| Triangle::new(p, p + Vec3::X, p + Vec3::Y))
+        .collect();
+    let (nodes, idx, _) = build::<Aabb, _>(&TopDown::default(), &tris).unwrap();
+    let tree = open(&nodes, &idx, &tris);
+    let ray = Ray::new(Vec3::new(0.3, 0.2, -500.0), Vec3::Z, f32::INFINITY).unwrap();
+    assert_eq!(
+        tree.cast_ray(&tris, &ray, RayOrder::BestFirst, ()).unwrap(),
+        brute_force::ray_closest(&tris, &ray)
+    );
+}
+
+#[test]
+fn bad_rays_and_points_are_errors() {
+    assert!(Ray::new(Vec3::ZERO, Vec3::ZERO, 1.0).is_err());
+    assert!(Ray::new(Vec3::NAN, Vec3::X, 1.0).is_err());
+    assert!(Ray::new(Vec3::ZERO, Vec3::X, f32::NAN).is_err());
+    assert!(Ray::new(Vec3::ZERO, Vec3::X, -1.0).is_err());
+    let pts = [Vec3::ZERO, Vec3::ONE];
+    let (nodes, idx, _) = build::<Aabb, _>(&TopDown::default(), &pts).unwrap();
+    let tree = open(&nodes, &idx, &pts);
+    assert!(tree.nearest(&pts, Vec3::INFINITY, ()).is_err());
+    assert!(
+        tree.nearest(&pts[..1], Vec3::ZERO, ()).is_err(),
+        "wrong primitive slice"
+    );
+}
