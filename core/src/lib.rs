@@ -42,6 +42,7 @@
 
 pub mod build;
 pub mod bv;
+pub mod collision;
 mod error;
 pub mod narrow;
 mod primitive;

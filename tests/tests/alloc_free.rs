@@ -5,10 +5,11 @@
 //! (Inside the normal test harness other threads allocate, so a global counter
 //! would be unreliable there.)
 
-use bvhkit::glam::Vec3;
+use bvhkit::collision::{collide, BroadPhase, Object};
+use bvhkit::glam::{Quat, Vec3};
 use bvhkit::{
-    overlapping_pairs, Aabb, BoundingVolume, Collector, Descent, Dop14, Dop26, Node, Obb, Sphere,
-    TopDown, Triangle,
+    overlapping_pairs, Aabb, BoundingVolume, Bvh, Collector, Counts, DepthSwitch, Descent, Dop14,
+    Dop26, Node, Obb, Order, PairTraversal, Pairs, Ray, RayOrder, Rigid, Sphere, TopDown, Triangle,
 };
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -84,6 +85,12 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         let mut out = vec![(0u32, 0u32); 100_000];
         let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; a.len()];
         let mut hits = vec![0u32; 1000];
+        let mut queue = vec![0u32; bvhkit::max_nodes(a.len())];
+        let mut objects_scratch = (
+            vec![Aabb::EMPTY; 3],
+            vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(3)],
+            vec![0u32; 3],
+        );
         let (trees, allocs) = count(|| {
             let ta = cfg.build_cached(&a, &mut na, &mut ia, &mut cache).unwrap();
             let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
@@ -106,7 +113,8 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
             let mut c = Collector::new(&mut hits);
             let region = Aabb::new(Vec3::splat(2.0), Vec3::splat(5.0));
             ta.overlapping(&a, &region, |i| c.push(i)).unwrap();
-            total + c.finish().unwrap().len() + ta.stats().leaves
+            total += c.finish().unwrap().len() + ta.stats().leaves;
+            total + every_other_query(&ta, &a, &tb, &b, &mut queue, &mut objects_scratch)
         });
         if allocs != 0 {
             failures.push(format!(
@@ -121,6 +129,86 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
             ));
         }
     }
+}
+
+type Scratch = (Vec<Aabb>, Vec<Node<Aabb>>, Vec<u32>);
+
+/// Every traversal kind, rule, mode, frame and answer of the two-tree query;
+/// every single-tree order; rays; nearest; the collision system. Returns a
+/// count of results so the caller can check the scene is not empty.
+fn every_other_query<B: BoundingVolume>(
+    ta: &Bvh<B>,
+    a: &[Triangle],
+    tb: &Bvh<B>,
+    b: &[Triangle],
+    queue: &mut [u32],
+    scratch: &mut Scratch,
+) -> usize {
+    let mut total = 0;
+    let motion = Rigid::new(Quat::from_rotation_z(0.2), Vec3::new(0.3, -0.2, 0.1)).unwrap();
+    for rule in Descent::ALL {
+        for traversal in PairTraversal::all(rule) {
+            let q = || Pairs::new(ta, a, tb, b).traversal(traversal);
+            let mut counts = Counts::default();
+            total += q().counted(&mut counts).count().unwrap();
+            total += q().in_frame(motion).exact().count().unwrap();
+            total += q().in_frame(motion).first().unwrap().is_some() as usize;
+            total += q().exact().for_each(|_, _| {}).unwrap();
+            total += counts.bv_tests as usize;
+        }
+    }
+    let mixed = DepthSwitch {
+        depth: 3,
+        near: Descent::Simultaneous,
+        far: Descent::Overlap,
+    };
+    total += Pairs::new(ta, a, tb, b).descent(mixed).count().unwrap();
+    let region = Aabb::new(Vec3::splat(2.0), Vec3::splat(5.0));
+    total += ta
+        .search(a, &region, Order::DepthFirst, (), |_| {})
+        .unwrap();
+    total += ta.search(a, &region, Order::Recursive, (), |_| {}).unwrap();
+    total += ta
+        .search(a, &region, Order::BreadthFirst(queue), (), |_| {})
+        .unwrap();
+    let ray = Ray::new(
+        Vec3::new(-1.0, 3.3, 0.2),
+        Vec3::new(1.0, 0.01, 0.02),
+        f32::INFINITY,
+    )
+    .unwrap();
+    for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+        total += ta.cast_ray(a, &ray, order, ()).unwrap().is_some() as usize;
+    }
+    total += ta.ray_hits_any(a, &ray, ()).unwrap().is_some() as usize;
+    total += ta
+        .nearest(a, Vec3::new(3.1, 2.2, 9.0), ())
+        .unwrap()
+        .is_some() as usize;
+    let objects = [
+        Object {
+            tree: ta,
+            prims: a,
+            pose: Rigid::IDENTITY,
+        },
+        Object {
+            tree: tb,
+            prims: b,
+            pose: motion,
+        },
+        Object {
+            tree: ta,
+            prims: a,
+            pose: motion.inverse(),
+        },
+    ];
+    let mut broad = BroadPhase {
+        boxes: &mut scratch.0,
+        nodes: &mut scratch.1,
+        indices: &mut scratch.2,
+    };
+    total += collide(&objects, &mut broad, PairTraversal::default(), |_| {}).unwrap();
+    total
 }
 
 fn main() {

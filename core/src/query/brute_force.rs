@@ -107,3 +107,28 @@ pub fn nearest<P: crate::PointDistance>(prims: &[P], point: glam::Vec3) -> Optio
     }
     best
 }
+
+/// Every contact of a scene, without any hierarchy: all object pairs `a < b`,
+/// all primitive pairs, object `b`'s primitives moved into `a`'s frame. The
+/// reference for [`collide`](crate::collision::collide).
+pub fn contacts<B, P>(
+    objects: &[crate::collision::Object<'_, B, P>],
+    mut f: impl FnMut(crate::collision::Contact),
+) -> usize
+where
+    P: Primitive + crate::Intersects + crate::Transform,
+{
+    let mut found = 0;
+    for (i, a) in objects.iter().enumerate() {
+        for (j, b) in objects.iter().enumerate().skip(i + 1) {
+            let relative = a.pose.inverse().after(&b.pose);
+            found += pairs_placed(a.prims, b.prims, &relative, crate::Exact, |p, q| {
+                f(crate::collision::Contact {
+                    objects: (i as u32, j as u32),
+                    prims: (p, q),
+                })
+            });
+        }
+    }
+    found
+}

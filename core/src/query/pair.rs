@@ -56,6 +56,13 @@ impl Default for PairTraversal {
 }
 
 impl PairTraversal {
+    /// [`PairTraversal::Simultaneous`] with the rule type fixed, so that it
+    /// needs no type annotation.
+    pub const SIMULTANEOUS: PairTraversal = PairTraversal::Simultaneous;
+    /// [`PairTraversal::LeafDirected`] with the rule type fixed, so that it
+    /// needs no type annotation.
+    pub const LEAF_DIRECTED: PairTraversal = PairTraversal::LeafDirected;
+
     /// The four traversal kinds with the given rule where they take one.
     pub const fn all(rule: Descent) -> [PairTraversal; 4] {
         [

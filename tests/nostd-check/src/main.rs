@@ -3,8 +3,11 @@
 #![no_std]
 #![no_main]
 
-use bvhkit::glam::Vec3;
-use bvhkit::{brute_force, overlapping_pairs, Aabb, Descent, Node, Sphere, TopDown, Triangle};
+use bvhkit::glam::{Quat, Vec3};
+use bvhkit::{
+    brute_force, overlapping_pairs, Aabb, Descent, Exact, Node, PairTraversal, Pairs, Ray,
+    RayOrder, Rigid, Sphere, TopDown, Triangle,
+};
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
@@ -20,7 +23,11 @@ extern "C" {}
 fn scene(shift: f32) -> [Triangle; 64] {
     core::array::from_fn(|i| {
         let o = Vec3::new((i % 8) as f32, (i / 8) as f32 + shift, 0.0);
-        Triangle::new(o, o + Vec3::new(1.2, 0.0, 0.0), o + Vec3::new(0.0, 1.1, 0.4))
+        Triangle::new(
+            o,
+            o + Vec3::new(1.2, 0.0, 0.0),
+            o + Vec3::new(0.0, 1.1, 0.4),
+        )
     })
 }
 
@@ -34,12 +41,27 @@ fn run() -> Result<bool, bvhkit::Error> {
     let mut found = 0usize;
     overlapping_pairs(&ta, &a, &tb, &b, Descent::Larger, |_, _| found += 1)?;
     let mut ns = [Node::<Sphere>::EMPTY; bvhkit::max_nodes(64)];
-    let ts = TopDown::sah().build(&a, &mut ns, &mut ia)?;
+    let mut is = [0u32; 64];
+    let ts = TopDown::sah().build(&a, &mut ns, &mut is)?;
     let mut spheres = 0usize;
     overlapping_pairs(&ts, &a, &ts, &a, Descent::Simultaneous, |_, _| spheres += 1)?;
+    // Exact narrow phase with B moved (rigid transform, robust predicates).
+    let motion = Rigid::new(Quat::from_rotation_z(0.3), Vec3::new(0.2, 0.1, 0.0))?;
+    let exact = Pairs::new(&ta, &a, &tb, &b)
+        .traversal(PairTraversal::LEAF_DIRECTED)
+        .in_frame(motion)
+        .exact()
+        .count()?;
+    let exact_ref = brute_force::pairs_placed(&a, &b, &motion, Exact, |_, _| {});
+    let ray = Ray::new(Vec3::new(3.3, 2.2, 5.0), -Vec3::Z, f32::INFINITY)?;
+    let hit = ta.cast_ray(&a, &ray, RayOrder::BestFirst, ())?;
     Ok(found > 0
         && found == brute_force::pairs(&a, &b, |_, _| {})
-        && spheres == brute_force::pairs(&a, &a, |_, _| {}))
+        && spheres == brute_force::pairs(&a, &a, |_, _| {})
+        && exact > 0
+        && exact == exact_ref
+        && hit.is_some()
+        && hit == brute_force::ray_closest(&a, &ray))
 }
 
 #[no_mangle]
