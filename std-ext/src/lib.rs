@@ -5,6 +5,9 @@
 //! command-line tool. The core crate never allocates; this crate is where
 //! `Vec`s, files and clocks live.
 
+pub mod collide;
+pub mod cost;
+pub mod mesh;
 pub mod scene;
 pub mod tour;
 

@@ -4,8 +4,8 @@
 use crate::{median_time, scene, OwnedBvh};
 use bvhkit::build::PRESETS;
 use bvhkit::{
-    overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Obb, Primitive, Sphere,
-    TopDown, Triangle,
+    overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Intersects, Obb,
+    Primitive, Sphere, TopDown, Transform, Triangle,
 };
 use serde::Serialize;
 use std::time::Instant;
@@ -19,6 +19,14 @@ pub struct TourReport {
     pub strategies: Vec<Row>,
     /// One row per bounding volume (binned SAH trees).
     pub volumes: Vec<Row>,
+    /// The collision scene of the descent-rule table.
+    pub collision_scene: String,
+    /// Exact contacts of that scene by brute force.
+    pub reference_contacts: usize,
+    /// The cost model's unit costs, per volume type.
+    pub calibration: Vec<crate::cost::Calibration>,
+    /// Descent rules and traversal kinds: counters, measured and predicted time.
+    pub descent_rules: Vec<crate::cost::CostRow>,
     /// Queries whose answer equalled the brute-force reference.
     pub verified: usize,
     /// Queries run.
@@ -154,6 +162,13 @@ impl Default for TourOptions {
     }
 }
 
+type CostReport =
+    fn(
+        &[Triangle],
+        bvhkit::Rigid,
+        usize,
+    ) -> Result<(crate::cost::Calibration, Vec<crate::cost::CostRow>), bvhkit::Error>;
+
 /// Runs the tour; `progress` is told what is being measured.
 pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourReport, bvhkit::Error> {
     let (a, b) = if opts.subdivisions == 6 {
@@ -195,9 +210,36 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
     volumes.push(measure::<Dop26>(
         "sah", &sah, &a, &b, &reference, opts.runs,
     )?);
+    // Descent rules on the collision scene: the rock against a moved copy of
+    // its own tree, exact contacts, with the calibrated cost model.
+    progress("descent rules");
+    let mesh = &a;
+    let motion = crate::collide::default_motion();
+    let placed: Vec<Triangle> = mesh.iter().map(|t| t.transformed(&motion)).collect();
+    let reference_contacts = reference_pairs(mesh, &placed)
+        .into_iter()
+        .filter(|&(i, j)| mesh[i as usize].intersects(&placed[j as usize]))
+        .count();
+    let mut calibration = Vec::new();
+    let mut descent_rules = Vec::new();
+    for (name, report) in [
+        ("aabb", crate::cost::report_for::<Aabb> as CostReport),
+        ("sphere", crate::cost::report_for::<Sphere>),
+        ("obb", crate::cost::report_for::<Obb>),
+        ("14-dop", crate::cost::report_for::<Dop14>),
+    ] {
+        progress(&format!("descent rules, {name}"));
+        let (cal, rows) = report(mesh, motion, opts.runs)?;
+        calibration.push(cal);
+        descent_rules.extend(rows);
+    }
     let rows = strategies.iter().chain(&volumes);
-    let queries = rows.clone().count();
-    let verified = rows.filter(|r| r.matches).count();
+    let queries = rows.clone().count() + descent_rules.len();
+    let verified = rows.filter(|r| r.matches).count()
+        + descent_rules
+            .iter()
+            .filter(|r| r.intersecting_pairs == reference_contacts)
+            .count();
     Ok(TourReport {
         scene: SceneInfo {
             name: format!(
@@ -211,6 +253,13 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         },
         strategies,
         volumes,
+        collision_scene: format!(
+            "object A against a moved copy of its own tree ({} triangles each), exact contacts",
+            mesh.len()
+        ),
+        reference_contacts,
+        calibration,
+        descent_rules,
         verified,
         queries,
     })
@@ -266,6 +315,41 @@ pub fn render(r: &TourReport) -> String {
         "Bounding volumes (binned SAH; SAH cost uses each volume's own areas):",
         &r.volumes,
     );
+    s += &format!(
+        "\nDescent rules and traversals: {} ({} contacts by brute force).\n\
+         Cost model T = Nv*Cv + Np*Cp + Nu*Cu + Co, unit costs timed on this machine:\n",
+        r.collision_scene, r.reference_contacts
+    );
+    for c in &r.calibration {
+        s += &format!(
+            "  {:<7} Cv = {:>6.1} ns   Cp = {:>6.1} ns   Cu = {:>6.1} ns   Co = {:>7.1} ns\n",
+            c.volume, c.cv_ns, c.cp_ns, c.cu_ns, c.co_ns
+        );
+    }
+    s += &format!(
+        "{:<7} {:<14} {:<13} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>4}\n",
+        "volume", "traversal", "descent", "Nv", "Np", "Nu", "contacts", "ms", "T ms", "error", "ok"
+    );
+    for d in &r.descent_rules {
+        s += &format!(
+            "{:<7} {:<14} {:<13} {:>9} {:>9} {:>9} {:>9} {:>9.2} {:>9.2} {:>6.0}% {:>4}\n",
+            d.volume,
+            d.traversal,
+            d.descent,
+            d.bv_tests,
+            d.prim_tests,
+            d.updates,
+            d.intersecting_pairs,
+            d.measured_ms,
+            d.predicted_ms,
+            d.error * 100.0,
+            if d.intersecting_pairs == r.reference_contacts {
+                "yes"
+            } else {
+                "NO"
+            }
+        );
+    }
     s += &format!(
         "\nverified: {}/{} queries match brute force\n",
         r.verified, r.queries

@@ -99,10 +99,12 @@ pub enum Descent {
     /// Alternate between A and B with depth. No decision cost; wins over
     /// A-first when the trees are alike, loses to "larger" when they are not.
     Alternate,
-    /// Open the side whose children overlap the other node least (by the
-    /// volume of the children's box intersections with the other node's box):
-    /// the side where one step prunes most. Costs four box intersections per
-    /// decision; wins on deep, overlapping trees where pruning matters most.
+    /// Descend by degree of overlap: open the side whose children lie least
+    /// inside the other node (each child's box volume shared with the other
+    /// node's box, as a fraction of the child's box, summed over both
+    /// children). A child mostly inside the other node will not be pruned, so
+    /// opening that side buys nothing. Costs four box intersections and two
+    /// extra child fetches per decision.
     Overlap,
 }
 
@@ -153,9 +155,12 @@ impl DescentRule for Descent {
             Descent::Overlap => match (d.a_children, d.b_children) {
                 (Some(ac), Some(bc)) => {
                     let (a, b) = (d.a.aabb(), d.b.aabb());
-                    let left_by_a = shared(&ac[0].aabb(), &b) + shared(&ac[1].aabb(), &b);
-                    let left_by_b = shared(&bc[0].aabb(), &a) + shared(&bc[1].aabb(), &a);
-                    if left_by_a <= left_by_b {
+                    // A small pad keeps flat boxes (coplanar scenes) comparable.
+                    let pad = 1e-3 * a.union(&b).extent().max_element();
+                    let inside = |x: &Aabb, y: &Aabb| shared(x, y, pad) / shared(x, x, pad);
+                    let a_stays = inside(&ac[0].aabb(), &b) + inside(&ac[1].aabb(), &b);
+                    let b_stays = inside(&bc[0].aabb(), &a) + inside(&bc[1].aabb(), &a);
+                    if a_stays <= b_stays {
                         Open::A
                     } else {
                         Open::B
@@ -181,11 +186,12 @@ fn larger<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
     }
 }
 
-/// Volume of the intersection of two boxes, in `f64` (zero when disjoint).
-fn shared(x: &Aabb, y: &Aabb) -> f64 {
+/// Volume of the intersection of two boxes, each side padded by `pad`, in
+/// `f64` (zero when disjoint).
+fn shared(x: &Aabb, y: &Aabb, pad: f32) -> f64 {
     let lo = x.min.max(y.min).as_dvec3();
     let hi = x.max.min(y.max).as_dvec3();
-    let e = (hi - lo).max(glam::DVec3::ZERO);
+    let e = (hi - lo + pad as f64).max(glam::DVec3::ZERO);
     e.x * e.y * e.z
 }
 

@@ -1,0 +1,419 @@
+//! `bvhkit collide`: one tree-against-tree query, measured and (optionally)
+//! checked against brute force.
+//!
+//! The default scene is the rock of the tour and a moved copy of the *same*
+//! tree: B is not rebuilt, it is queried in A's frame through a rigid motion
+//! (each moved node volume counts as an update, `Nu`).
+
+use crate::tour::reference_pairs;
+use crate::{median_time, scene, OwnedBvh};
+use bvhkit::build::PRESETS;
+use bvhkit::glam::{Quat, Vec3};
+use bvhkit::{
+    Aabb, BoundingVolume, Counts, Descent, Dop14, Dop18, Dop26, Frame, Intersects, Obb,
+    PairTraversal, Pairs, Place, Primitive, Rigid, Same, Sphere, Triangle,
+};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Bounding volume names accepted by `--bv`.
+pub const VOLUMES: [&str; 6] = ["aabb", "sphere", "obb", "14-dop", "18-dop", "26-dop"];
+
+/// Traversal kinds accepted by `--traversal`.
+pub const TRAVERSALS: [&str; 4] = ["stack", "recursive", "simultaneous", "leaf-directed"];
+
+/// What the query returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// Every contact, handed to a callback (here: stored).
+    All,
+    /// Stop at the first contact.
+    First,
+    /// Only count.
+    Count,
+}
+
+/// Options of one `collide` run.
+#[derive(Clone, Debug)]
+pub struct CollideOptions {
+    /// One of [`VOLUMES`].
+    pub volume: String,
+    /// A builder preset name (see `bvhkit::build::PRESETS`).
+    pub builder: String,
+    /// One of [`TRAVERSALS`].
+    pub traversal: String,
+    /// Descent rule for the stack and recursive traversals.
+    pub descent: Descent,
+    /// Result mode.
+    pub mode: Mode,
+    /// Timed runs (median reported).
+    pub runs: usize,
+    /// Compare with brute force.
+    pub verify: bool,
+}
+
+impl Default for CollideOptions {
+    fn default() -> Self {
+        CollideOptions {
+            volume: "aabb".into(),
+            builder: "sah".into(),
+            traversal: "stack".into(),
+            descent: Descent::Larger,
+            mode: Mode::All,
+            runs: 5,
+            verify: false,
+        }
+    }
+}
+
+/// The objects to collide.
+#[derive(Clone, Debug)]
+pub enum Input {
+    /// The built-in rock against a moved copy of itself.
+    Default {
+        /// Icosphere subdivisions (6 = 81 920 triangles).
+        subdivisions: u32,
+    },
+    /// Two meshes, in the same frame.
+    Meshes {
+        /// Name for the report.
+        name: String,
+        /// Triangles of A.
+        a: Vec<Triangle>,
+        /// Triangles of B.
+        b: Vec<Triangle>,
+    },
+}
+
+/// The motion that places the default scene's copy: a turn and a shift that
+/// make the two rocks overlap partly.
+pub fn default_motion() -> Rigid {
+    let turn = Quat::from_rotation_y(0.7) * Quat::from_rotation_x(0.35);
+    match Rigid::new(turn, Vec3::new(1.35, 0.2, 0.1)) {
+        Ok(m) => m,
+        Err(e) => unreachable!("constant motion is valid: {e}"),
+    }
+}
+
+/// What `collide` measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct CollideReport {
+    /// Scene description.
+    pub scene: String,
+    /// Triangles in A.
+    pub triangles_a: usize,
+    /// Triangles in B.
+    pub triangles_b: usize,
+    /// Bounding volume.
+    pub volume: String,
+    /// Builder preset.
+    pub builder: String,
+    /// Traversal kind.
+    pub traversal: String,
+    /// Descent rule (for stack / recursive).
+    pub descent: String,
+    /// Result mode.
+    pub mode: Mode,
+    /// Median build time of the tree(s).
+    pub build_ms: f64,
+    /// `Nv`: bounding-volume pair tests.
+    pub bv_tests: u64,
+    /// `Np`: primitive pair tests.
+    pub prim_tests: u64,
+    /// `Nu`: volumes moved into A's frame.
+    pub updates: u64,
+    /// Primitive pairs whose bounds overlap (in the first mode: seen before stopping).
+    pub candidate_pairs: usize,
+    /// Triangle pairs that really touch (exact test; 0 or 1 in the first mode).
+    pub intersecting_pairs: usize,
+    /// The first contact found (first mode).
+    pub first_pair: Option<(u32, u32)>,
+    /// Median query time in the chosen mode.
+    pub time_ms: f64,
+    /// Brute-force contact count, when verified.
+    pub reference_pairs: Option<usize>,
+    /// Whether the answer equals brute force, when verified.
+    pub verified: Option<bool>,
+}
+
+/// The traversal named `name` with rule `descent`.
+pub fn traversal(name: &str, descent: Descent) -> Result<PairTraversal, String> {
+    Ok(match name {
+        "stack" => PairTraversal::Stack(descent),
+        "recursive" => PairTraversal::Recursive(descent),
+        "simultaneous" => PairTraversal::SIMULTANEOUS,
+        "leaf-directed" => PairTraversal::LEAF_DIRECTED,
+        other => {
+            return Err(format!(
+                "unknown traversal '{other}' (one of {TRAVERSALS:?})"
+            ))
+        }
+    })
+}
+
+/// Runs one collide query as configured.
+pub fn run(input: &Input, opts: &CollideOptions) -> Result<CollideReport, String> {
+    match opts.volume.as_str() {
+        "aabb" => run_with::<Aabb>(input, opts),
+        "sphere" => run_with::<Sphere>(input, opts),
+        "obb" => run_with::<Obb>(input, opts),
+        "14-dop" => run_with::<Dop14>(input, opts),
+        "18-dop" => run_with::<Dop18>(input, opts),
+        "26-dop" => run_with::<Dop26>(input, opts),
+        other => Err(format!("unknown volume '{other}' (one of {VOLUMES:?})")),
+    }
+}
+
+fn run_with<B: BoundingVolume>(
+    input: &Input,
+    opts: &CollideOptions,
+) -> Result<CollideReport, String> {
+    let builder = PRESETS
+        .iter()
+        .find(|p| p.name == opts.builder)
+        .map(|p| p.builder)
+        .ok_or_else(|| {
+            let names: Vec<_> = PRESETS.iter().map(|p| p.name).collect();
+            format!("unknown builder '{}' (one of {names:?})", opts.builder)
+        })?;
+    let trav = traversal(&opts.traversal, opts.descent)?;
+    let err = |e: bvhkit::Error| e.to_string();
+    match input {
+        Input::Default { subdivisions } => {
+            let mesh = scene::rock(*subdivisions, 1);
+            let (build, tree) = median_time(opts.runs, || OwnedBvh::<B>::build(&builder, &mesh));
+            let tree = tree.map_err(err)?;
+            let t = tree.view();
+            let name =
+                format!("rock ({subdivisions} subdivisions) and a moved copy of the same tree");
+            measure(
+                &name,
+                &t,
+                &mesh,
+                &t,
+                &mesh,
+                default_motion(),
+                trav,
+                opts,
+                build_ms(build),
+            )
+        }
+        Input::Meshes { name, a, b } => {
+            let start = Instant::now();
+            let ta = OwnedBvh::<B>::build(&builder, a).map_err(err)?;
+            let tb = OwnedBvh::<B>::build(&builder, b).map_err(err)?;
+            let build = start.elapsed().as_secs_f64() * 1e3;
+            measure(name, &ta.view(), a, &tb.view(), b, Same, trav, opts, build)
+        }
+    }
+}
+
+fn build_ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+#[allow(clippy::too_many_arguments)]
+fn measure<B, F>(
+    name: &str,
+    ta: &bvhkit::Bvh<B>,
+    a: &[Triangle],
+    tb: &bvhkit::Bvh<B>,
+    b: &[Triangle],
+    frame: F,
+    trav: PairTraversal,
+    opts: &CollideOptions,
+    build_ms: f64,
+) -> Result<CollideReport, String>
+where
+    B: BoundingVolume,
+    F: Frame + Place<Triangle> + Copy,
+{
+    let err = |e: bvhkit::Error| e.to_string();
+    let q = || Pairs::new(ta, a, tb, b).traversal(trav).in_frame_of(frame);
+    // One counted run: the cost-function terms, candidates and contacts.
+    let mut counts = Counts::default();
+    let mut candidates = 0usize;
+    let mut contacts = Vec::new();
+    let mut first_pair = None;
+    let answer = |p: &Triangle, q: &Triangle| {
+        if p.bounds().overlaps(&q.bounds()) {
+            candidates += 1;
+            p.intersects(q)
+        } else {
+            false
+        }
+    };
+    match opts.mode {
+        Mode::First => {
+            first_pair = q()
+                .answer(answer)
+                .counted(&mut counts)
+                .first()
+                .map_err(err)?
+        }
+        Mode::All | Mode::Count => {
+            q().answer(answer)
+                .counted(&mut counts)
+                .for_each(|i, j| contacts.push((i, j)))
+                .map_err(err)?;
+        }
+    }
+    let intersecting = match opts.mode {
+        Mode::First => first_pair.is_some() as usize,
+        _ => contacts.len(),
+    };
+    // Timed runs: no counters, the plain exact answer, the chosen mode.
+    let mut out = Vec::with_capacity(contacts.len());
+    let (t, r) = median_time(opts.runs, || match opts.mode {
+        Mode::All => {
+            out.clear();
+            q().exact().for_each(|i, j| out.push((i, j)))
+        }
+        Mode::First => q().exact().first().map(|f| f.is_some() as usize),
+        Mode::Count => q().exact().count(),
+    });
+    r.map_err(err)?;
+    let (reference_pairs, verified) = if opts.verify {
+        let placed: Vec<Triangle> = b.iter().map(|t| frame.place(t)).collect();
+        let reference: Vec<(u32, u32)> = reference_pairs(a, &placed)
+            .into_iter()
+            .filter(|&(i, j)| a[i as usize].intersects(&placed[j as usize]))
+            .collect();
+        let ok = match opts.mode {
+            Mode::First => {
+                first_pair.is_some() != reference.is_empty()
+                    && first_pair.is_none_or(|p| reference.binary_search(&p).is_ok())
+            }
+            _ => {
+                contacts.sort_unstable();
+                contacts == reference
+            }
+        };
+        (Some(reference.len()), Some(ok))
+    } else {
+        (None, None)
+    };
+    Ok(CollideReport {
+        scene: name.to_string(),
+        triangles_a: a.len(),
+        triangles_b: b.len(),
+        volume: B::NAME.to_string(),
+        builder: opts.builder.clone(),
+        traversal: trav.name().to_string(),
+        descent: match trav {
+            PairTraversal::Stack(d) | PairTraversal::Recursive(d) => d.name().to_string(),
+            _ => String::new(),
+        },
+        mode: opts.mode,
+        build_ms,
+        bv_tests: counts.bv_tests,
+        prim_tests: counts.prim_tests,
+        updates: counts.updates,
+        candidate_pairs: candidates,
+        intersecting_pairs: intersecting,
+        first_pair,
+        time_ms: t.as_secs_f64() * 1e3,
+        reference_pairs,
+        verified,
+    })
+}
+
+/// The report as text.
+pub fn render(r: &CollideReport) -> String {
+    let mut s = format!(
+        "scene: {}: {} + {} triangles\n\
+         tree: {} volumes, builder {}, built in {:.2} ms\n\
+         query: {} traversal{}, mode {:?}\n\n\
+         bv tests (Nv)        {:>12}\n\
+         prim tests (Np)      {:>12}\n\
+         updates (Nu)         {:>12}\n\
+         candidate pairs      {:>12}\n\
+         intersecting pairs   {:>12}\n\
+         time                 {:>12.3} ms (median)\n",
+        r.scene,
+        r.triangles_a,
+        r.triangles_b,
+        r.volume,
+        r.builder,
+        r.build_ms,
+        r.traversal,
+        if r.descent.is_empty() {
+            String::new()
+        } else {
+            format!(", descend {}", r.descent)
+        },
+        r.mode,
+        r.bv_tests,
+        r.prim_tests,
+        r.updates,
+        r.candidate_pairs,
+        r.intersecting_pairs,
+        r.time_ms,
+    );
+    if let Some(p) = r.first_pair {
+        s += &format!(
+            "first pair           {:>12}\n",
+            format!("{} x {}", p.0, p.1)
+        );
+    }
+    if let (Some(n), Some(ok)) = (r.reference_pairs, r.verified) {
+        s += &format!(
+            "brute force          {:>12} contacts: {}\n",
+            n,
+            if ok { "match" } else { "MISMATCH" }
+        );
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_mode_and_traversal_verifies_on_a_small_scene() {
+        for traversal in TRAVERSALS {
+            for mode in [Mode::All, Mode::First, Mode::Count] {
+                let opts = CollideOptions {
+                    traversal: traversal.into(),
+                    mode,
+                    runs: 1,
+                    verify: true,
+                    ..CollideOptions::default()
+                };
+                let r = run(&Input::Default { subdivisions: 3 }, &opts).unwrap();
+                assert_eq!(r.verified, Some(true), "{traversal} {mode:?}");
+                assert!(r.reference_pairs.unwrap() > 0);
+                assert!(
+                    r.updates > 0 && r.bv_tests > 0 && r.prim_tests >= r.candidate_pairs as u64
+                );
+                if mode != Mode::First {
+                    assert_eq!(r.intersecting_pairs, r.reference_pairs.unwrap());
+                    assert!(r.candidate_pairs >= r.intersecting_pairs);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_names_are_errors() {
+        let input = Input::Default { subdivisions: 1 };
+        for opts in [
+            CollideOptions {
+                volume: "cube".into(),
+                ..Default::default()
+            },
+            CollideOptions {
+                builder: "magic".into(),
+                ..Default::default()
+            },
+            CollideOptions {
+                traversal: "sideways".into(),
+                ..Default::default()
+            },
+        ] {
+            assert!(run(&input, &opts).is_err());
+        }
+    }
+}

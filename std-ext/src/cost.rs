@@ -1,0 +1,209 @@
+//! The cost model `T = Nv*Cv + Np*Cp + Nu*Cu + Co`, calibrated on this machine.
+//!
+//! Each unit cost is timed in isolation on samples from the scene itself:
+//! `Cv` on node pairs of the two trees, `Cu` on moving B's node volumes into
+//! A's frame, `Cp` on primitive pairs the traversal really visits (placing the
+//! primitive of B and deciding the pair exactly), and `Co` on a query whose
+//! root volumes miss. Then every descent rule is run with counters, and the
+//! predicted time is set against the measured one. What the model leaves out
+//! (stack pushes, the rule's decisions, cache misses) shows up as the error.
+
+use crate::{median_time, OwnedBvh};
+use bvhkit::{
+    BoundingVolume, Bvh, CostModel, Counts, Descent, Exact, PairTraversal, Pairs, Place, Rigid,
+    TopDown, Triangle,
+};
+use serde::Serialize;
+use std::hint::black_box;
+
+/// One query configuration measured against the model.
+#[derive(Clone, Debug, Serialize)]
+pub struct CostRow {
+    /// Bounding volume.
+    pub volume: String,
+    /// Traversal kind.
+    pub traversal: String,
+    /// Descent rule (empty for traversals that fix their own).
+    pub descent: String,
+    /// `Nv`.
+    pub bv_tests: u64,
+    /// `Np`.
+    pub prim_tests: u64,
+    /// `Nu`.
+    pub updates: u64,
+    /// Exact contacts found.
+    pub intersecting_pairs: usize,
+    /// Median measured time.
+    pub measured_ms: f64,
+    /// The model's prediction.
+    pub predicted_ms: f64,
+    /// `(predicted - measured) / measured`.
+    pub error: f64,
+}
+
+/// The calibrated model of one volume type, in nanoseconds.
+#[derive(Clone, Debug, Serialize)]
+pub struct Calibration {
+    /// Bounding volume.
+    pub volume: String,
+    /// ns per volume test.
+    pub cv_ns: f64,
+    /// ns per primitive test.
+    pub cp_ns: f64,
+    /// ns per volume update.
+    pub cu_ns: f64,
+    /// ns of fixed cost per query.
+    pub co_ns: f64,
+}
+
+impl Calibration {
+    /// As the core's [`CostModel`] (nanoseconds).
+    pub fn model(&self) -> CostModel {
+        CostModel {
+            cv: self.cv_ns,
+            cp: self.cp_ns,
+            cu: self.cu_ns,
+            co: self.co_ns,
+        }
+    }
+}
+
+/// Nanoseconds per call of `f`, the median of five timed batches of `n` calls.
+fn per_call(n: usize, mut f: impl FnMut(usize)) -> f64 {
+    let (t, _) = median_time(5, || {
+        for i in 0..n {
+            f(i)
+        }
+    });
+    t.as_secs_f64() * 1e9 / n as f64
+}
+
+/// Times the unit costs for volume type `B` on trees `ta`, `tb` (B moved by `motion`).
+pub fn calibrate<B: BoundingVolume>(
+    ta: &Bvh<B>,
+    a: &[Triangle],
+    tb: &Bvh<B>,
+    b: &[Triangle],
+    motion: Rigid,
+) -> Result<Calibration, bvhkit::Error> {
+    let (na, nb) = (ta.nodes(), tb.nodes());
+    const K: usize = 1 << 14;
+    // Walk the node arrays in order, as a traversal mostly does (children
+    // are stored next to each other).
+    let pick = |len: usize, i: usize| i % len;
+    let moved: Vec<B> = (0..K)
+        .map(|i| nb[pick(nb.len(), i)].bv.transformed(&motion))
+        .collect();
+    let cv = per_call(K * 8, |i| {
+        let x = &na[pick(na.len(), i / 8 + i % 8)].bv;
+        black_box(x.overlaps(black_box(&moved[i % K])));
+    });
+    let cu = per_call(K, |i| {
+        black_box(black_box(&nb[pick(nb.len(), i)].bv).transformed(&motion));
+    });
+    // Primitive pairs the traversal really visits.
+    let mut visited = Vec::with_capacity(1 << 16);
+    Pairs::new(ta, a, tb, b)
+        .in_frame(motion)
+        .answer(|p: &Triangle, q: &Triangle| {
+            if visited.len() < (1 << 16) {
+                visited.push((*p, *q));
+            }
+            false
+        })
+        .count()?;
+    let cp = if visited.is_empty() {
+        0.0
+    } else {
+        let n = visited.len();
+        let mut exact = Exact;
+        per_call(n * 4, |i| {
+            let (p, q) = &visited[i % n];
+            let placed = Place::place(&motion, black_box(q));
+            black_box(bvhkit::Answer::accept(&mut exact, p, &placed));
+        })
+    };
+    // Fixed cost: B moved far away, so only the roots are tested.
+    let away = Rigid::translation(bvhkit::glam::Vec3::splat(
+        4.0 * (ta.root().bv.aabb().max.abs().max_element()
+            + tb.root().bv.aabb().max.abs().max_element()),
+    ))?
+    .after(&motion);
+    let whole = per_call(20_000, |_| {
+        black_box(Pairs::new(ta, a, tb, b).in_frame(away).exact().count().ok());
+    });
+    let co = (whole - cv - cu).max(0.0);
+    Ok(Calibration {
+        volume: B::NAME.to_string(),
+        cv_ns: cv,
+        cp_ns: cp,
+        cu_ns: cu,
+        co_ns: co,
+    })
+}
+
+/// Runs every descent rule (stack traversal) and the other traversal kinds
+/// with counters; returns one row per configuration with measured and
+/// predicted time.
+pub fn rule_table<B: BoundingVolume>(
+    ta: &Bvh<B>,
+    a: &[Triangle],
+    tb: &Bvh<B>,
+    b: &[Triangle],
+    motion: Rigid,
+    model: &CostModel,
+    runs: usize,
+) -> Result<Vec<CostRow>, bvhkit::Error> {
+    let mut configs: Vec<PairTraversal> = Descent::ALL
+        .iter()
+        .map(|&d| PairTraversal::Stack(d))
+        .collect();
+    configs.push(PairTraversal::Recursive(Descent::Larger));
+    configs.push(PairTraversal::SIMULTANEOUS);
+    configs.push(PairTraversal::LEAF_DIRECTED);
+    let mut rows = Vec::new();
+    for traversal in configs {
+        let q = || {
+            Pairs::new(ta, a, tb, b)
+                .traversal(traversal)
+                .in_frame(motion)
+                .exact()
+        };
+        let mut counts = Counts::default();
+        let found = q().counted(&mut counts).count()?;
+        let (t, n) = median_time(runs, || q().count());
+        n?;
+        let measured = t.as_secs_f64() * 1e3;
+        let predicted = model.predict(&counts) * 1e-6;
+        let descent = match traversal {
+            PairTraversal::Stack(d) | PairTraversal::Recursive(d) => d.name().to_string(),
+            _ => String::new(),
+        };
+        rows.push(CostRow {
+            volume: B::NAME.to_string(),
+            traversal: traversal.name().to_string(),
+            descent,
+            bv_tests: counts.bv_tests,
+            prim_tests: counts.prim_tests,
+            updates: counts.updates,
+            intersecting_pairs: found,
+            measured_ms: measured,
+            predicted_ms: predicted,
+            error: (predicted - measured) / measured,
+        });
+    }
+    Ok(rows)
+}
+
+/// Calibration and rule table for one volume type on a mesh and its moved copy.
+pub fn report_for<B: BoundingVolume>(
+    mesh: &[Triangle],
+    motion: Rigid,
+    runs: usize,
+) -> Result<(Calibration, Vec<CostRow>), bvhkit::Error> {
+    let tree = OwnedBvh::<B>::build(&TopDown::sah(), mesh)?;
+    let t = tree.view();
+    let cal = calibrate(&t, mesh, &t, mesh, motion)?;
+    let rows = rule_table(&t, mesh, &t, mesh, motion, &cal.model(), runs)?;
+    Ok((cal, rows))
+}
