@@ -7,7 +7,7 @@
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, BoundingVolume, Sphere};
+use bvhkit::{brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Node, Sphere, TopDown};
 use std::panic::{self, AssertUnwindSafe};
 
 /// One check: a name, its points, and the test.
@@ -30,10 +30,14 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 3] = [
+pub const EXERCISES: [(u32, &str); 7] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
+    (4, "descent rule: descend the larger volume"),
+    (5, "informed depth-first traversal (recursive)"),
+    (6, "traversal with a fixed stack"),
+    (7, "the cost function T"),
 ];
 
 /// A score for one exercise.
@@ -296,7 +300,273 @@ pub fn checks() -> Vec<Check> {
                     && median_ok(e, Vec3::new(40.0, 1.0, 3.0), 9)
             },
         },
+        // Exercise 4
+        Check {
+            exercise: 4,
+            name: "never opens a leaf",
+            points: 3,
+            run: |e| {
+                let big = node([0.0; 3], [10.0; 3], false);
+                let small_leaf = node([0.0; 3], [1.0; 3], true);
+                let big_leaf = node([0.0; 3], [10.0; 3], true);
+                let small = node([0.0; 3], [1.0; 3], false);
+                e.descend_a(&big, &small_leaf)
+                    && e.descend_a(&small, &big_leaf)
+                    && !e.descend_a(&big_leaf, &small)
+                    && !e.descend_a(&small_leaf, &big)
+            },
+        },
+        Check {
+            exercise: 4,
+            name: "opens the larger of two internal nodes (A on a tie)",
+            points: 4,
+            run: |e| {
+                let big = node([0.0; 3], [10.0; 3], false);
+                let small = node([0.0; 3], [1.0; 3], false);
+                e.descend_a(&big, &small)
+                    && !e.descend_a(&small, &big)
+                    && e.descend_a(&small, &small)
+            },
+        },
+        Check {
+            exercise: 4,
+            name: "size means volume, not the length along one axis",
+            points: 3,
+            run: |e| {
+                let long_thin = node([0.0; 3], [20.0, 0.1, 0.1], false);
+                let cube = node([0.0; 3], [2.0; 3], false);
+                !e.descend_a(&long_thin, &cube) && e.descend_a(&cube, &long_thin)
+            },
+        },
+        // Exercise 5
+        Check {
+            exercise: 5,
+            name: "finds exactly the brute-force pairs on overlapping grids",
+            points: 6,
+            run: |e| {
+                traversal_cases()[..2]
+                    .iter()
+                    .all(|(a, b)| sorted(run_dfs(e, a, b)) == reference_pairs(a, b))
+            },
+        },
+        Check {
+            exercise: 5,
+            name: "tiny trees (1-3 leaves), apart and touching",
+            points: 5,
+            run: |e| {
+                traversal_cases()[2..]
+                    .iter()
+                    .all(|(a, b)| sorted(run_dfs(e, a, b)) == reference_pairs(a, b))
+            },
+        },
+        Check {
+            exercise: 5,
+            name: "reports each pair once",
+            points: 4,
+            run: |e| {
+                traversal_cases().iter().all(|(a, b)| {
+                    let got = run_dfs(e, a, b);
+                    let mut unique = sorted(got.clone());
+                    unique.dedup();
+                    unique.len() == got.len()
+                })
+            },
+        },
+        // Exercise 6
+        Check {
+            exercise: 6,
+            name: "finds exactly the brute-force pairs",
+            points: 6,
+            run: |e| {
+                traversal_cases().iter().all(|(a, b)| {
+                    let (ok, out) = run_stack(e, a, b, 4 * (a.depth + b.depth) + 4);
+                    ok && sorted(out) == reference_pairs(a, b)
+                })
+            },
+        },
+        Check {
+            exercise: 6,
+            name: "a stack that is too small gives false, not a panic",
+            points: 5,
+            run: |e| {
+                let (a, b) = &traversal_cases()[0];
+                !run_stack(e, a, b, 2).0 && !run_stack(e, a, b, 0).0
+            },
+        },
+        Check {
+            exercise: 6,
+            name: "one waiting pair per level is enough (depth-bounded stack)",
+            points: 4,
+            run: |e| {
+                traversal_cases()
+                    .iter()
+                    .all(|(a, b)| run_stack(e, a, b, a.depth + b.depth + 2).0)
+            },
+        },
+        // Exercise 7
+        Check {
+            exercise: 7,
+            name: "T for given counters and unit costs",
+            points: 6,
+            run: |e| {
+                let counts = Counts {
+                    bv_tests: 1200,
+                    prim_tests: 340,
+                    updates: 56,
+                };
+                let model = CostModel {
+                    cv: 2.5,
+                    cp: 31.0,
+                    cu: 12.0,
+                    co: 800.0,
+                };
+                let t = e.predicted_cost(&counts, &model);
+                (t - (1200.0 * 2.5 + 340.0 * 31.0 + 56.0 * 12.0 + 800.0)).abs() < 1e-6
+            },
+        },
+        Check {
+            exercise: 7,
+            name: "an empty query costs Co",
+            points: 2,
+            run: |e| {
+                let model = CostModel {
+                    cv: 2.5,
+                    cp: 31.0,
+                    cu: 12.0,
+                    co: 800.0,
+                };
+                (e.predicted_cost(&Counts::default(), &model) - 800.0).abs() < 1e-9
+            },
+        },
+        Check {
+            exercise: 7,
+            name: "no overflow with huge counters",
+            points: 2,
+            run: |e| {
+                let counts = Counts {
+                    bv_tests: u64::MAX / 2,
+                    prim_tests: 3,
+                    updates: 0,
+                };
+                let model = CostModel {
+                    cv: 1.0,
+                    cp: 1.0,
+                    cu: 1.0,
+                    co: 0.0,
+                };
+                let t = e.predicted_cost(&counts, &model);
+                (t / (u64::MAX / 2) as f64 - 1.0).abs() < 1e-9
+            },
+        },
     ]
+}
+
+/// A tree over boxes, with its storage.
+struct Tree {
+    prims: Vec<Aabb>,
+    nodes: Vec<Node<Aabb>>,
+    indices: Vec<u32>,
+    depth: usize,
+}
+
+impl Tree {
+    fn new(prims: Vec<Aabb>, leaf: u32) -> Tree {
+        let builder = TopDown::default().with_max_leaf_size(leaf);
+        let mut nodes = vec![Node::EMPTY; bvhkit::max_nodes(prims.len())];
+        let mut indices = vec![0u32; prims.len()];
+        let depth = match builder.build(&prims, &mut nodes, &mut indices) {
+            Ok(t) => t.depth(),
+            Err(e) => panic!("grader tree: {e}"),
+        };
+        Tree {
+            prims,
+            nodes,
+            indices,
+            depth,
+        }
+    }
+
+    fn bvh(&self) -> Bvh<'_, Aabb> {
+        Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth)
+    }
+}
+
+/// Boxes on a jittered grid, some overlapping their neighbours.
+fn boxes(n: usize, seed: u64, offset: Vec3) -> Vec<Aabb> {
+    let mut r = Rng(seed);
+    (0..n)
+        .map(|i| {
+            let c = Vec3::new((i % 10) as f32, (i / 10 % 10) as f32, (i / 100) as f32) + offset;
+            let lo = c + r.point(0.6, Vec3::ZERO);
+            Aabb::new(
+                lo,
+                lo + Vec3::new(r.next(), r.next(), r.next()) * 0.9 + 0.05,
+            )
+        })
+        .collect()
+}
+
+fn reference_pairs(a: &Tree, b: &Tree) -> Vec<(u32, u32)> {
+    let mut want = Vec::new();
+    brute_force::pairs(&a.prims, &b.prims, |i, j| want.push((i, j)));
+    want.sort_unstable();
+    want
+}
+
+/// Scene pairs for the traversal exercises: overlapping grids with different
+/// leaf sizes, and tiny trees (1 to 3 leaves) apart and touching.
+fn traversal_cases() -> Vec<(Tree, Tree)> {
+    let mut cases = vec![
+        (
+            Tree::new(boxes(300, 1, Vec3::ZERO), 1),
+            Tree::new(boxes(250, 2, Vec3::splat(0.4)), 3),
+        ),
+        (
+            Tree::new(boxes(64, 3, Vec3::ZERO), 4),
+            Tree::new(boxes(500, 4, Vec3::new(-2.0, 1.0, 0.0)), 1),
+        ),
+    ];
+    for (na, nb) in [(1, 1), (1, 3), (2, 3), (3, 2)] {
+        for gap in [0.0f32, 0.5] {
+            let a = (0..na)
+                .map(|i| Aabb::new(Vec3::X * (2 * i) as f32, Vec3::X * (2 * i) as f32 + 1.0))
+                .collect();
+            let b = (0..nb)
+                .map(|i| {
+                    let lo = Vec3::new(1.0 + gap, 0.0, 0.0) + Vec3::Y * (2 * i) as f32;
+                    Aabb::new(lo, lo + 1.0)
+                })
+                .collect();
+            cases.push((Tree::new(a, 1), Tree::new(b, 1)));
+        }
+    }
+    cases
+}
+
+fn run_dfs(e: &dyn Exercises, a: &Tree, b: &Tree) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    e.informed_dfs(&a.bvh(), &a.prims, &b.bvh(), &b.prims, &mut out);
+    out
+}
+
+fn run_stack(e: &dyn Exercises, a: &Tree, b: &Tree, size: usize) -> (bool, Vec<(u32, u32)>) {
+    let mut out = Vec::new();
+    let mut stack = vec![(0u32, 0u32); size];
+    let ok = e.stack_dfs(&a.bvh(), &a.prims, &b.bvh(), &b.prims, &mut stack, &mut out);
+    (ok, out)
+}
+
+fn sorted(mut v: Vec<(u32, u32)>) -> Vec<(u32, u32)> {
+    v.sort_unstable();
+    v
+}
+
+fn node(min: [f32; 3], max: [f32; 3], leaf: bool) -> Node<Aabb> {
+    Node {
+        bv: b(min, max),
+        first: 0,
+        count: leaf as u32,
+    }
 }
 
 fn median_ok(e: &dyn Exercises, stretch: Vec3, seed: u64) -> bool {
@@ -359,10 +629,10 @@ pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
 
 /// The table the `grade` command prints; the last line is `total: E/P points (X%)`.
 pub fn report(scores: &[ExerciseScore]) -> String {
-    let mut s = format!("{:<4} {:<40} {:>8}\n", "#", "exercise", "points");
+    let mut s = format!("{:<4} {:<44} {:>8}\n", "#", "exercise", "points");
     for x in scores {
         s += &format!(
-            "{:<4} {:<40} {:>8}\n",
+            "{:<4} {:<44} {:>8}\n",
             x.exercise,
             x.title,
             format!("{}/{}", x.earned, x.possible)
@@ -397,7 +667,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 40/40 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 90/90 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -466,6 +736,63 @@ mod tests {
                 _ => Reference.median_partition(centroids, indices),
             }
         }
+        fn descend_a(&self, a: &Node<Aabb>, b: &Node<Aabb>) -> bool {
+            match self.0 {
+                9 => a.bv.volume() >= b.bv.volume(), // forgets the leaves
+                10 => b.is_leaf() || (!a.is_leaf() && a.bv.extent().x >= b.bv.extent().x),
+                _ => Reference.descend_a(a, b),
+            }
+        }
+        fn informed_dfs(
+            &self,
+            a: &Bvh<Aabb>,
+            pa: &[Aabb],
+            b: &Bvh<Aabb>,
+            pb: &[Aabb],
+            out: &mut Vec<(u32, u32)>,
+        ) {
+            match self.0 {
+                // Tests the leaves' volumes but not the primitives inside.
+                11 => {
+                    for x in a.nodes().iter().filter(|n| n.is_leaf()) {
+                        for y in b.nodes().iter().filter(|n| n.is_leaf()) {
+                            if x.bv.overlaps(&y.bv) {
+                                for &p in a.leaf_primitives(x) {
+                                    for &q in b.leaf_primitives(y) {
+                                        out.push((p, q));
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                _ => Reference.informed_dfs(a, pa, b, pb, out),
+            }
+        }
+        fn stack_dfs(
+            &self,
+            a: &Bvh<Aabb>,
+            pa: &[Aabb],
+            b: &Bvh<Aabb>,
+            pb: &[Aabb],
+            stack: &mut [(u32, u32)],
+            out: &mut Vec<(u32, u32)>,
+        ) -> bool {
+            match self.0 {
+                // Indexes the stack without a bound check.
+                12 => {
+                    let _ = stack[stack.len().max(64)];
+                    Reference.stack_dfs(a, pa, b, pb, stack, out)
+                }
+                _ => Reference.stack_dfs(a, pa, b, pb, stack, out),
+            }
+        }
+        fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
+            match self.0 {
+                13 => Reference.predicted_cost(counts, model) - model.co, // forgets Co
+                _ => Reference.predicted_cost(counts, model),
+            }
+        }
     }
 
     #[test]
@@ -479,6 +806,11 @@ mod tests {
             (6, 2),
             (7, 3),
             (8, 3),
+            (9, 4),
+            (10, 4),
+            (11, 5),
+            (12, 6),
+            (13, 7),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(
@@ -496,7 +828,7 @@ mod tests {
             return;
         }
         let scores = grade(&Student);
-        assert_eq!(scores.len(), 3);
+        assert_eq!(scores.len(), EXERCISES.len());
         assert!(scores.iter().all(|s| s.earned == 0 && s.possible > 0));
     }
 }

@@ -17,7 +17,7 @@ pub mod reference;
 pub mod student;
 
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Sphere};
+use bvhkit::{Aabb, Bvh, CostModel, Counts, Node, Sphere};
 
 /// The exercises, one method each. Statements and hints are in the book
 /// (chapter "Exercises") and on the stubs in [`student`].
@@ -40,4 +40,39 @@ pub trait Exercises {
     /// are those with the smallest coordinate along the longest axis of the
     /// centroids' bounding box, and return `n / 2`.
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize;
+
+    /// Exercise 4: the "descend the larger volume" rule of a two-tree
+    /// traversal. `true` means open `a`, `false` means open `b`. A leaf is
+    /// never opened; otherwise open the node with the larger volume (`a` on a
+    /// tie). Called only when at least one node is internal.
+    fn descend_a(&self, a: &Node<Aabb>, b: &Node<Aabb>) -> bool;
+
+    /// Exercise 5: the informed depth-first traversal of two trees, written
+    /// recursively: push `(i, j)` into `out` for every primitive `i` of A and
+    /// `j` of B whose boxes overlap, each pair once.
+    fn informed_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        out: &mut Vec<(u32, u32)>,
+    );
+
+    /// Exercise 6: the same traversal without recursion, using only the
+    /// caller's fixed `stack` of node pairs. Returns `false` (and must not
+    /// panic) when the stack is too small; `true` when the traversal finished.
+    fn stack_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        stack: &mut [(u32, u32)],
+        out: &mut Vec<(u32, u32)>,
+    ) -> bool;
+
+    /// Exercise 7: the cost function `T = Nv*Cv + Np*Cp + Nu*Cu + Co` from a
+    /// query's counters and the unit costs.
+    fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64;
 }

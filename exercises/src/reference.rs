@@ -2,7 +2,9 @@
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, BoundingVolume, Sphere};
+use bvhkit::{
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Node, PairTraversal, Pairs, Sphere,
+};
 
 /// The reference implementation: scores 100%.
 #[derive(Debug, Default)]
@@ -34,5 +36,86 @@ impl Exercises for Reference {
             });
         }
         mid
+    }
+
+    fn descend_a(&self, a: &Node<Aabb>, b: &Node<Aabb>) -> bool {
+        b.is_leaf() || (!a.is_leaf() && a.bv.volume() >= b.bv.volume())
+    }
+
+    fn informed_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        let query = Pairs::new(a, prims_a, b, prims_b)
+            .traversal(PairTraversal::Recursive(Descent::Larger))
+            .for_each(|i, j| out.push((i, j)));
+        if let Err(e) = query {
+            panic!("the reference traversal failed: {e}");
+        }
+    }
+
+    fn stack_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        stack: &mut [(u32, u32)],
+        out: &mut Vec<(u32, u32)>,
+    ) -> bool {
+        let (na, nb) = (a.nodes(), b.nodes());
+        let mut top = 0;
+        let push = |stack: &mut [(u32, u32)], top: &mut usize, pair| match stack.get_mut(*top) {
+            Some(slot) => {
+                *slot = pair;
+                *top += 1;
+                true
+            }
+            None => false,
+        };
+        if !push(stack, &mut top, (0, 0)) {
+            return false;
+        }
+        while top > 0 {
+            top -= 1;
+            let (i, j) = stack[top];
+            let (x, y) = (&na[i as usize], &nb[j as usize]);
+            if !x.bv.overlaps(&y.bv) {
+                continue;
+            }
+            if x.is_leaf() && y.is_leaf() {
+                for &p in a.leaf_primitives(x) {
+                    for &q in b.leaf_primitives(y) {
+                        if prims_a[p as usize].overlaps(&prims_b[q as usize]) {
+                            out.push((p, q));
+                        }
+                    }
+                }
+                continue;
+            }
+            let open_a = self.descend_a(x, y);
+            let Some((l, r)) = (if open_a { x.children() } else { y.children() }) else {
+                return false; // a rule that opens a leaf; not this one
+            };
+            let pairs = if open_a {
+                [(r, j), (l, j)]
+            } else {
+                [(i, r), (i, l)]
+            };
+            for pair in pairs {
+                if !push(stack, &mut top, pair) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
+        model.predict(counts)
     }
 }

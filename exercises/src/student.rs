@@ -3,7 +3,7 @@
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Sphere};
+use bvhkit::{Aabb, Bvh, CostModel, Counts, Node, Sphere};
 
 /// Your implementation of the exercises.
 #[derive(Debug, Default)]
@@ -50,5 +50,50 @@ impl Exercises for Student {
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
         let _ = (centroids, indices);
         todo!("exercise 3")
+    }
+
+    /// Hint: `Node::is_leaf`, and `BoundingVolume::volume` for the size. Which
+    /// node must be opened when exactly one of them is a leaf?
+    fn descend_a(&self, a: &Node<Aabb>, b: &Node<Aabb>) -> bool {
+        let _ = (a, b);
+        todo!("exercise 4")
+    }
+
+    /// Hint: write a helper `fn visit(i, j)` over node indices, starting at
+    /// the roots `(0, 0)`: return if the volumes miss; at two leaves, test the
+    /// primitive pairs (`Bvh::leaf_primitives`); otherwise use your
+    /// `descend_a` and recurse on the two children (`Node::children`).
+    fn informed_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        let _ = (a, prims_a, b, prims_b, out);
+        todo!("exercise 5")
+    }
+
+    /// Hint: replace the recursion by a loop that pops a pair and pushes the
+    /// child pairs. `stack.get_mut(top)` returns `None` when the stack is full:
+    /// return `false` then instead of indexing out of bounds.
+    fn stack_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        prims_a: &[Aabb],
+        b: &Bvh<Aabb>,
+        prims_b: &[Aabb],
+        stack: &mut [(u32, u32)],
+        out: &mut Vec<(u32, u32)>,
+    ) -> bool {
+        let _ = (a, prims_a, b, prims_b, stack, out);
+        todo!("exercise 6")
+    }
+
+    /// Hint: the counters are integers (`u64`), the unit costs `f64`.
+    fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
+        let _ = (counts, model);
+        todo!("exercise 7")
     }
 }
