@@ -207,3 +207,52 @@ pub fn report_for<B: BoundingVolume>(
     let rows = rule_table(&t, mesh, &t, mesh, motion, &cal.model(), runs)?;
     Ok((cal, rows))
 }
+
+/// Spearman rank correlation of predicted and measured time over `rows`
+/// (1 = the model orders the configurations exactly as measured).
+pub fn rank_agreement(rows: &[&CostRow]) -> f64 {
+    let rank = |key: &dyn Fn(&CostRow) -> f64| {
+        let mut order: Vec<usize> = (0..rows.len()).collect();
+        order.sort_by(|&i, &j| key(rows[i]).total_cmp(&key(rows[j])));
+        let mut r = vec![0.0; rows.len()];
+        for (pos, &i) in order.iter().enumerate() {
+            r[i] = pos as f64;
+        }
+        r
+    };
+    let (p, m) = (rank(&|r| r.predicted_ms), rank(&|r| r.measured_ms));
+    let n = rows.len() as f64;
+    if n < 2.0 {
+        return 1.0;
+    }
+    let d2: f64 = p.iter().zip(&m).map(|(a, b)| (a - b) * (a - b)).sum();
+    1.0 - 6.0 * d2 / (n * (n * n - 1.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(predicted_ms: f64, measured_ms: f64) -> CostRow {
+        CostRow {
+            volume: String::new(),
+            traversal: String::new(),
+            descent: String::new(),
+            bv_tests: 0,
+            prim_tests: 0,
+            updates: 0,
+            intersecting_pairs: 0,
+            measured_ms,
+            predicted_ms,
+            error: 0.0,
+        }
+    }
+
+    #[test]
+    fn rank_agreement_is_one_for_the_same_order_and_minus_one_reversed() {
+        let same = [row(1.0, 10.0), row(2.0, 20.0), row(3.0, 25.0)];
+        let reversed = [row(1.0, 30.0), row(2.0, 20.0), row(3.0, 10.0)];
+        assert_eq!(rank_agreement(&same.iter().collect::<Vec<_>>()), 1.0);
+        assert_eq!(rank_agreement(&reversed.iter().collect::<Vec<_>>()), -1.0);
+    }
+}

@@ -321,9 +321,20 @@ pub fn render(r: &TourReport) -> String {
         r.collision_scene, r.reference_contacts
     );
     for c in &r.calibration {
+        let rows: Vec<_> = r
+            .descent_rules
+            .iter()
+            .filter(|d| d.volume == c.volume)
+            .collect();
         s += &format!(
-            "  {:<7} Cv = {:>6.1} ns   Cp = {:>6.1} ns   Cu = {:>6.1} ns   Co = {:>7.1} ns\n",
-            c.volume, c.cv_ns, c.cp_ns, c.cu_ns, c.co_ns
+            "  {:<7} Cv = {:>6.1} ns   Cp = {:>6.1} ns   Cu = {:>6.1} ns   Co = {:>7.1} ns   \
+             rank agreement (Spearman) {:>5.2}\n",
+            c.volume,
+            c.cv_ns,
+            c.cp_ns,
+            c.cu_ns,
+            c.co_ns,
+            crate::cost::rank_agreement(&rows)
         );
     }
     s += &format!(

@@ -345,14 +345,20 @@ where
         self.b.check_query(self.pb.len())?;
         let (pa, pb, frame) = (self.pa, self.pb, &self.frame);
         let mut answer = self.answer;
+        // Leaves visit B's primitives in the outer loop: place each one once
+        // per leaf pair, not once per primitive pair.
+        let mut placed: Option<(u32, Q)> = None;
         let mut walk = Walk {
             a: self.a,
             b: self.b,
             frame: &self.frame,
             tally: self.tally,
             leaf: |p: u32, q: u32| {
-                let placed = frame.place(&pb[q as usize]);
-                if answer.accept(&pa[p as usize], &placed) {
+                let placed = match &mut placed {
+                    Some((last, moved)) if *last == q => &*moved,
+                    slot => &slot.insert((q, frame.place(&pb[q as usize]))).1,
+                };
+                if answer.accept(&pa[p as usize], placed) {
                     sink(p, q)
                 } else {
                     ControlFlow::Continue(())
@@ -454,8 +460,8 @@ where
     fn leaves(&mut self, i: u32, j: u32) -> Flow {
         let (a, b) = (self.a, self.b);
         let (la, lb) = (a.leaf_primitives(self.na(i)), b.leaf_primitives(self.nb(j)));
-        for &p in la {
-            for &q in lb {
+        for &q in lb {
+            for &p in la {
                 self.tally.prim_tests(1);
                 (self.leaf)(p, q)?;
             }
