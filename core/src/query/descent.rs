@@ -152,28 +152,34 @@ impl DescentRule for Descent {
                     Open::B
                 }
             }
-            Descent::Overlap => match (d.a_children, d.b_children) {
-                (Some(ac), Some(bc)) => {
-                    let (a, b) = (d.a.aabb(), d.b.aabb());
-                    // A small pad keeps flat boxes (coplanar scenes) comparable.
-                    let pad = 1e-3 * a.union(&b).extent().max_element();
-                    let inside = |x: &Aabb, y: &Aabb| shared(x, y, pad) / shared(x, x, pad);
-                    let a_stays = inside(&ac[0].aabb(), &b) + inside(&ac[1].aabb(), &b);
-                    let b_stays = inside(&bc[0].aabb(), &a) + inside(&bc[1].aabb(), &a);
-                    if a_stays <= b_stays {
-                        Open::A
-                    } else {
-                        Open::B
-                    }
-                }
-                _ => larger(d),
-            },
+            Descent::Overlap => by_overlap(d),
         }
     }
 
     #[inline]
     fn wants_children(&self) -> bool {
         *self == Descent::Overlap
+    }
+}
+
+/// The overlap rule, kept out of line so that the cheap rules inline.
+#[inline(never)]
+fn by_overlap<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
+    match (d.a_children, d.b_children) {
+        (Some(ac), Some(bc)) => {
+            let (a, b) = (d.a.aabb(), d.b.aabb());
+            // A small pad keeps flat boxes (coplanar scenes) comparable.
+            let pad = 1e-3 * a.union(&b).extent().max_element();
+            let inside = |x: &Aabb, y: &Aabb| shared(x, y, pad) / shared(x, x, pad);
+            let a_stays = inside(&ac[0].aabb(), &b) + inside(&ac[1].aabb(), &b);
+            let b_stays = inside(&bc[0].aabb(), &a) + inside(&bc[1].aabb(), &a);
+            if a_stays <= b_stays {
+                Open::A
+            } else {
+                Open::B
+            }
+        }
+        _ => larger(d),
     }
 }
 

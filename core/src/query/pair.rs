@@ -479,19 +479,29 @@ where
         yb: &B,
         depth: u32,
     ) -> (Open, Option<[B; 2]>) {
+        let x = &self.na(i).bv;
+        if !rule.wants_children() {
+            let d = Decision {
+                a: x,
+                b: yb,
+                a_children: None,
+                b_children: None,
+                depth,
+            };
+            return (rule.choose(&d), None);
+        }
         let (al, ar) = children(self.na(i));
         let (bl, br) = children(self.nb(j));
-        let bc = rule
-            .wants_children()
-            .then(|| [self.b_bv(bl), self.b_bv(br)]);
+        let bc = [self.b_bv(bl), self.b_bv(br)];
         let (x, ac) = (&self.na(i).bv, [&self.na(al).bv, &self.na(ar).bv]);
         let d = Decision {
             a: x,
             b: yb,
-            a_children: bc.as_ref().map(|_| ac),
-            b_children: bc.as_ref().map(|c| [&c[0], &c[1]]),
+            a_children: Some(ac),
+            b_children: Some([&bc[0], &bc[1]]),
             depth,
         };
+        let bc = Some(bc);
         (rule.choose(&d), bc)
     }
 
