@@ -3,8 +3,9 @@
 
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    brute_force, overlapping_pairs, Aabb, BoundingVolume, Bvh, Descent, Dop14, Error, Node, Obb,
-    OnFailure, Partition, Sphere, SplitPoint, TopDown, Triangle,
+    brute_force, overlapping_pairs, Aabb, BoundingVolume, Bvh, Descent, Dop14, Error, Exact, Node,
+    Obb, OnFailure, Order, PairTraversal, Pairs, Partition, Ray, RayOrder, Rigid, Sphere,
+    SplitPoint, TopDown, Triangle,
 };
 use bvhkit_tests::{build, open};
 
@@ -158,6 +159,34 @@ fn tiny_trees_far_apart_and_touching() {
                     assert_eq!(pairs_sorted::<Aabb>(&cfg, &a, &b, rule), want);
                     assert_eq!(pairs_sorted::<Sphere>(&cfg, &a, &b, rule), want);
                     assert_eq!(pairs_sorted::<Dop14>(&cfg, &a, &b, rule), want);
+                }
+                // Every traversal kind, also with B moved and the exact test.
+                let (na_, ia_, _) = build::<Aabb, _>(&cfg, &a).unwrap();
+                let (nb_, ib_, _) = build::<Aabb, _>(&cfg, &b).unwrap();
+                let (ta, tb) = (open(&na_, &ia_, &a), open(&nb_, &ib_, &b));
+                let nudge = Rigid::translation(Vec3::new(0.0, 0.0, 1e-3)).unwrap();
+                let mut exact_want = Vec::new();
+                brute_force::pairs_placed(&a, &b, &nudge, Exact, |i, j| exact_want.push((i, j)));
+                exact_want.sort_unstable();
+                for rule in Descent::ALL {
+                    for traversal in PairTraversal::all(rule) {
+                        let mut got = Vec::new();
+                        Pairs::new(&ta, &a, &tb, &b)
+                            .traversal(traversal)
+                            .for_each(|i, j| got.push((i, j)))
+                            .unwrap();
+                        got.sort_unstable();
+                        assert_eq!(got, want, "{traversal:?}, gap {gap}, {na}x{nb}");
+                        let mut got = Vec::new();
+                        Pairs::new(&ta, &a, &tb, &b)
+                            .traversal(traversal)
+                            .in_frame(nudge)
+                            .exact()
+                            .for_each(|i, j| got.push((i, j)))
+                            .unwrap();
+                        got.sort_unstable();
+                        assert_eq!(got, exact_want, "{traversal:?} moved, gap {gap}, {na}x{nb}");
+                    }
                 }
             }
         }
@@ -353,4 +382,55 @@ fn query_with_the_wrong_primitives_is_an_error() {
     assert_eq!(err, Error::PrimitiveCountMismatch { tree: 10, given: 5 });
     let mut seen = vec![0u32; 4];
     assert!(Bvh::from_parts(&nodes, &idx, &a[..5], &mut seen).is_err());
+    let mismatch = Error::PrimitiveCountMismatch { tree: 10, given: 5 };
+    for traversal in PairTraversal::all(Descent::Larger) {
+        let q = Pairs::new(&t, &a[..5], &t, &a).traversal(traversal);
+        assert_eq!(q.count().unwrap_err(), mismatch);
+    }
+    let ray = Ray::new(Vec3::ZERO, Vec3::X, 1.0).unwrap();
+    assert_eq!(
+        t.cast_ray(&a[..5], &ray, RayOrder::BestFirst, ())
+            .unwrap_err(),
+        mismatch
+    );
+    assert_eq!(t.ray_hits_any(&a[..5], &ray, ()).unwrap_err(), mismatch);
+    assert_eq!(t.nearest(&a[..5], Vec3::ZERO, ()).unwrap_err(), mismatch);
+}
+
+/// A tree claiming more depth than the fixed stacks hold is refused by every
+/// query with an error before any stack is touched.
+#[test]
+fn every_query_refuses_a_tree_deeper_than_its_stack() {
+    let a: Vec<_> = (0..10)
+        .map(|i| tri_at(Vec3::splat(i as f32), 1.0))
+        .collect();
+    let (nodes, idx, _) = build::<Aabb, _>(&TopDown::sah(), &a).unwrap();
+    let deep = Bvh::from_raw_parts(&nodes, &idx, bvhkit::MAX_DEPTH + 1);
+    let is_overflow = |e: Error| matches!(e, Error::StackOverflow { .. });
+    for traversal in PairTraversal::all(Descent::Overlap) {
+        assert!(is_overflow(
+            Pairs::new(&deep, &a, &deep, &a)
+                .traversal(traversal)
+                .count()
+                .unwrap_err()
+        ));
+    }
+    let region = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    let mut queue = vec![0u32; 64];
+    for order in [
+        Order::DepthFirst,
+        Order::Recursive,
+        Order::BreadthFirst(&mut queue),
+    ] {
+        assert!(is_overflow(
+            deep.search(&a, &region, order, (), |_| {}).unwrap_err()
+        ));
+    }
+    let ray = Ray::new(Vec3::ZERO, Vec3::X, 1.0).unwrap();
+    assert!(is_overflow(
+        deep.cast_ray(&a, &ray, RayOrder::DepthFirst, ())
+            .unwrap_err()
+    ));
+    assert!(is_overflow(deep.ray_hits_any(&a, &ray, ()).unwrap_err()));
+    assert!(is_overflow(deep.nearest(&a, Vec3::ZERO, ()).unwrap_err()));
 }
