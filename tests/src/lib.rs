@@ -339,3 +339,25 @@ fn reference<R: BoundingVolume>(prims: &[Triangle], r: &R) -> Vec<u32> {
     brute_force::overlapping(prims, r, |i| want.push(i));
     want
 }
+
+/// Builds bottom-up with Vec storage (and Vec scratch); returns the storage.
+pub fn build_bottom_up<B: BoundingVolume, P: Primitive>(
+    cfg: &bvhkit::build::BottomUp,
+    prims: &[P],
+) -> Result<Built<B>, bvhkit::Error> {
+    use bvhkit::build::{BottomUp, BottomUpScratch, Cluster};
+    let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
+    let mut clusters = vec![Cluster::<B>::EMPTY; nc];
+    let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+    let mut scratch = BottomUpScratch {
+        clusters: &mut clusters,
+        work: &mut work,
+        keys: &mut keys,
+    };
+    let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
+    let mut idx = vec![0u32; prims.len()];
+    let depth = cfg
+        .build(prims, &mut nodes, &mut idx, &mut scratch)?
+        .depth();
+    Ok((nodes, idx, depth))
+}

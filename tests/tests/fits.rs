@@ -118,6 +118,39 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(config())]
+
+    /// `from_aabb` must contain the whole box (all eight corners) in f32; a
+    /// sphere fitted to the two diagonal corners alone missed the others by
+    /// an ulp at 1e5 (found by the bottom-up builder's property test).
+    #[test]
+    fn from_aabb_contains_every_corner(pts in points()) {
+        let b = Aabb::fit(pts.as_slice());
+        fn check<B: BoundingVolume>(b: &Aabb) -> Result<(), TestCaseError> {
+            let v = B::from_aabb(b);
+            prop_assert!(v.contains_aabb(b), "{} from_aabb misses a corner of {:?}: {:?}", B::NAME, b, v);
+            Ok(())
+        }
+        check::<Aabb>(&b)?;
+        check::<Sphere>(&b)?;
+        check::<Obb>(&b)?;
+        check::<Kdop<3>>(&b)?;
+        check::<Dop14>(&b)?;
+        check::<Dop18>(&b)?;
+        check::<Dop26>(&b)?;
+    }
+}
+
+#[test]
+fn from_aabb_contains_the_box_found_by_bottom_up() {
+    let b = Aabb::new(
+        Vec3::new(100000.0, 99998.83, 99998.97),
+        Vec3::new(100000.85, 100001.31, 100001.21),
+    );
+    assert!(Sphere::from_aabb(&b).contains_aabb(&b));
+}
+
 #[test]
 fn obb_falls_back_to_the_aabb_for_a_cube() {
     // A cube's covariance is isotropic: PCA axes are arbitrary. The fit must not

@@ -6,10 +6,12 @@
 //! [`SplitPoint`], [`Stop`], and [`OnFailure`] for splits that do not separate
 //! anything. Bottom-up and insertion builders come with their own modules.
 
+mod bottom_up;
 mod presets;
 mod strategy;
 mod top_down;
 
+pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
 pub use presets::{Preset, PRESETS};
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};

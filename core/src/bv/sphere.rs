@@ -401,7 +401,11 @@ impl BoundingVolume for Sphere {
             return Sphere::EMPTY;
         }
         let c = d(aabb.min) * 0.5 + d(aabb.max) * 0.5;
-        Sphere::conservative(&[aabb.min, aabb.max], c)
+        // All eight corners: in exact arithmetic they are equally far from the
+        // centre, but after rounding the centre any one of them may be the
+        // farthest.
+        let corners: [Vec3; 8] = core::array::from_fn(|i| aabb.corner(i));
+        Sphere::conservative(&corners, c)
     }
 
     fn merge(&self, other: &Self) -> Self {

@@ -1,0 +1,420 @@
+//! Bottom-up construction: start from the primitives and merge clusters.
+//!
+//! Lecture: *bottom-up construction*. Every primitive starts as a cluster;
+//! the two clusters whose merged volume is smallest are merged, until one
+//! cluster (the root) remains. Two methods:
+//!
+//! - [`Method::Exhaustive`]: the textbook algorithm, searching all pairs at
+//!   every step: `O(n^2)` per merge, `O(n^3)` in all. Meant for teaching and
+//!   as a reference; use it for n up to a few hundred.
+//! - [`Method::Ploc`]: locally-ordered clustering (Meister and Bittner, 2018):
+//!   primitives sorted along a Morton curve, each cluster looks for its best
+//!   partner only among `radius` neighbours on each side, and all mutual best
+//!   pairs merge at once. About `O(n * radius)` per round and `O(log n)`
+//!   rounds; builds trees of the same kind at scale.
+//!
+//! Both need caller scratch ([`BottomUp::scratch_len`]); nothing allocates.
+
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::{validate, Primitive};
+use crate::tree::{Bvh, Node, MAX_DEPTH};
+use crate::Error;
+
+/// What "smallest merged volume" measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum MergeMetric {
+    /// Surface area of the merged volume (the SAH's measure). The default.
+    #[default]
+    SurfaceArea,
+    /// Volume of the merged volume.
+    Volume,
+}
+
+/// How pairs are searched.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// All pairs at every step: `O(n^3)`.
+    Exhaustive,
+    /// Locally-ordered clustering with a search radius (16 is common).
+    Ploc {
+        /// Neighbours searched on each side along the Morton order (1..=64).
+        radius: u32,
+    },
+}
+
+/// One cluster of the bottom-up scratch: its volume and its two parts
+/// (`left == right` marks a single primitive, stored in `left`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cluster<B> {
+    /// Volume around the cluster.
+    pub bv: B,
+    /// First part (cluster id), or the primitive for a single-primitive cluster.
+    pub left: u32,
+    /// Second part (cluster id); equal to `left` for a single primitive.
+    pub right: u32,
+}
+
+impl<B: BoundingVolume> Cluster<B> {
+    /// A blank cluster, for initialising scratch.
+    pub const EMPTY: Self = Cluster {
+        bv: B::EMPTY,
+        left: 0,
+        right: 0,
+    };
+}
+
+/// Caller-provided scratch for a bottom-up build over `n` primitives; sizes
+/// from [`BottomUp::scratch_len`].
+#[derive(Debug)]
+pub struct BottomUpScratch<'s, B> {
+    /// At least `2n - 1` clusters.
+    pub clusters: &'s mut [Cluster<B>],
+    /// At least `2n` words (active list and neighbour table).
+    pub work: &'s mut [u32],
+    /// At least `n` keys (Morton codes; unused by the exhaustive method).
+    pub keys: &'s mut [u64],
+}
+
+/// A bottom-up builder.
+///
+/// ```
+/// use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, Method, MergeMetric};
+/// use bvhkit::{Aabb, Node, Triangle};
+/// use glam::Vec3;
+/// let tris: Vec<Triangle> = (0..100).map(|i| {
+///     let o = Vec3::new((i % 10) as f32, (i / 10) as f32, 0.0);
+///     Triangle::new(o, o + Vec3::X * 0.8, o + Vec3::Y * 0.8)
+/// }).collect();
+/// let builder = BottomUp { method: Method::Ploc { radius: 8 }, metric: MergeMetric::SurfaceArea };
+/// let (nc, nw, nk) = BottomUp::scratch_len(tris.len());
+/// let mut clusters = vec![Cluster::<Aabb>::EMPTY; nc];
+/// let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+/// let mut scratch = BottomUpScratch { clusters: &mut clusters, work: &mut work, keys: &mut keys };
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+/// let mut idx = vec![0u32; tris.len()];
+/// let bvh = builder.build(&tris, &mut nodes, &mut idx, &mut scratch)?;
+/// assert_eq!(bvh.node_count(), 199);
+/// assert!(bvh.depth() < 20);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BottomUp {
+    /// Pair search.
+    pub method: Method,
+    /// What a merge minimises.
+    pub metric: MergeMetric,
+}
+
+impl Default for BottomUp {
+    fn default() -> Self {
+        BottomUp {
+            method: Method::Ploc { radius: 16 },
+            metric: MergeMetric::SurfaceArea,
+        }
+    }
+}
+
+impl BottomUp {
+    /// The textbook exhaustive builder (`O(n^3)`).
+    pub const fn exhaustive(metric: MergeMetric) -> Self {
+        BottomUp {
+            method: Method::Exhaustive,
+            metric,
+        }
+    }
+
+    /// Scratch lengths for `n` primitives: `(clusters, work, keys)` =
+    /// `(2n - 1, 2n, n)`. In bytes: `(2n - 1) * (size_of::<B>() + 8) + 8n + 8n`.
+    pub const fn scratch_len(n: usize) -> (usize, usize, usize) {
+        (crate::max_nodes(n), 2 * n, n)
+    }
+
+    /// Builds a tree with one primitive per leaf into `nodes` (at least
+    /// [`max_nodes(n)`](crate::max_nodes)) and `indices` (at least `n`).
+    ///
+    /// Errors: empty or non-finite input, buffers too small, an invalid
+    /// radius, or a tree deeper than [`MAX_DEPTH`] (possible for adversarial
+    /// input such as exponentially spaced points; the error says how deep).
+    pub fn build<'a, B: BoundingVolume, P: Primitive>(
+        &self,
+        prims: &[P],
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+        scratch: &mut BottomUpScratch<'_, B>,
+    ) -> Result<Bvh<'a, B>, Error> {
+        validate(prims)?;
+        let n = prims.len();
+        let (nc, nw, nk) = Self::scratch_len(n);
+        if nodes.len() < nc {
+            return Err(Error::NodeCapacity {
+                needed: nc,
+                available: nodes.len(),
+            });
+        }
+        if indices.len() < n {
+            return Err(Error::IndexCapacity {
+                needed: n,
+                available: indices.len(),
+            });
+        }
+        let uses_keys = matches!(self.method, Method::Ploc { .. });
+        if scratch.clusters.len() < nc
+            || scratch.work.len() < nw
+            || (uses_keys && scratch.keys.len() < nk)
+        {
+            return Err(Error::InvalidConfig(
+                "bottom-up scratch too small: see BottomUp::scratch_len",
+            ));
+        }
+        if let Method::Ploc { radius } = self.method {
+            if !(1..=64).contains(&radius) {
+                return Err(Error::InvalidConfig("PLOC radius must be in 1..=64"));
+            }
+        }
+        let clusters = &mut *scratch.clusters;
+        for (i, p) in prims.iter().enumerate() {
+            clusters[i] = Cluster {
+                bv: B::from_aabb(&p.bounds()),
+                left: i as u32,
+                right: i as u32,
+            };
+        }
+        let (active, rest) = scratch.work.split_at_mut(n);
+        for (i, a) in active.iter_mut().enumerate() {
+            *a = i as u32;
+        }
+        let root = match self.method {
+            Method::Exhaustive => exhaustive(clusters, active, n, self.metric),
+            Method::Ploc { radius } => ploc(
+                prims,
+                clusters,
+                active,
+                &mut rest[..n],
+                &mut scratch.keys[..n],
+                radius as usize,
+                self.metric,
+            ),
+        };
+        let depth = emit(clusters, root, n, nodes, indices)?;
+        Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth))
+    }
+}
+
+fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric) -> f32 {
+    match metric {
+        MergeMetric::SurfaceArea => bv.surface_area(),
+        MergeMetric::Volume => bv.volume(),
+    }
+}
+
+/// Merges the best pair of all active clusters until one is left; returns the root.
+fn exhaustive<B: BoundingVolume>(
+    clusters: &mut [Cluster<B>],
+    active: &mut [u32],
+    n: usize,
+    metric: MergeMetric,
+) -> u32 {
+    let mut k = n;
+    let mut next = n as u32;
+    while k > 1 {
+        let (mut best, mut bi, mut bj) = (f32::INFINITY, 0, 1);
+        for i in 0..k {
+            for j in i + 1..k {
+                let m = clusters[active[i] as usize]
+                    .bv
+                    .merge(&clusters[active[j] as usize].bv);
+                let c = cost(&m, metric);
+                // `<` keeps the first best pair: deterministic ties.
+                if c < best {
+                    (best, bi, bj) = (c, i, j);
+                }
+            }
+        }
+        let (l, r) = (active[bi], active[bj]);
+        clusters[next as usize] = Cluster {
+            bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
+            left: l,
+            right: r,
+        };
+        active[bi] = next;
+        active[bj] = active[k - 1];
+        k -= 1;
+        next += 1;
+    }
+    active[0]
+}
+
+/// Locally-ordered clustering; returns the root cluster.
+fn ploc<B: BoundingVolume, P: Primitive>(
+    prims: &[P],
+    clusters: &mut [Cluster<B>],
+    active: &mut [u32],
+    nearest: &mut [u32],
+    keys: &mut [u64],
+    radius: usize,
+    metric: MergeMetric,
+) -> u32 {
+    let n = prims.len();
+    // Morton order of the primitive centres (ties broken by index).
+    let mut centres = Aabb::EMPTY;
+    for p in prims {
+        centres.grow(p.bounds().center());
+    }
+    let extent = centres.extent();
+    for (i, p) in prims.iter().enumerate() {
+        let c = p.bounds().center();
+        let mut q = [0u32; 3];
+        for k in 0..3 {
+            let t = if extent[k] > 0.0 {
+                (c[k] - centres.min[k]) / extent[k]
+            } else {
+                0.0
+            };
+            q[k] = (t.clamp(0.0, 1.0) * 1023.0) as u32;
+        }
+        keys[i] = ((morton3(q[0], q[1], q[2]) as u64) << 32) | i as u64;
+    }
+    keys.sort_unstable();
+    for (a, &key) in active.iter_mut().zip(keys.iter()) {
+        *a = key as u32;
+    }
+    let mut k = n;
+    let mut next = n as u32;
+    const GONE: u32 = u32::MAX;
+    while k > 1 {
+        // Each cluster's best partner within the window.
+        for i in 0..k {
+            let (lo, hi) = (i.saturating_sub(radius), (i + radius + 1).min(k));
+            let bi = &clusters[active[i] as usize].bv;
+            let (mut best, mut partner) = (f32::INFINITY, i);
+            for j in lo..hi {
+                if j == i {
+                    continue;
+                }
+                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric);
+                // Ties go to the nearer index on the curve, then the lower one.
+                if c < best || (c == best && tie_prefers(i, j, partner)) {
+                    (best, partner) = (c, j);
+                }
+            }
+            nearest[i] = partner as u32;
+        }
+        // Mutual best pairs merge into the slot of the lower index.
+        let mut merged = 0;
+        for i in 0..k {
+            let j = nearest[i] as usize;
+            if j > i && nearest[j] as usize == i {
+                let (l, r) = (active[i], active[j]);
+                clusters[next as usize] = Cluster {
+                    bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
+                    left: l,
+                    right: r,
+                };
+                active[i] = next;
+                active[j] = GONE;
+                next += 1;
+                merged += 1;
+            }
+        }
+        if merged == 0 {
+            // Cannot happen with a strict order of pair costs, but never loop
+            // forever: merge the first two clusters.
+            let (l, r) = (active[0], active[1]);
+            clusters[next as usize] = Cluster {
+                bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
+                left: l,
+                right: r,
+            };
+            active[0] = next;
+            active[1] = GONE;
+            next += 1;
+        }
+        // Compact, keeping the curve order.
+        let mut w = 0;
+        for i in 0..k {
+            if active[i] != GONE {
+                active[w] = active[i];
+                w += 1;
+            }
+        }
+        k = w;
+    }
+    active[0]
+}
+
+/// Among equal costs, prefer the candidate `j` closer to `i` on the curve,
+/// then the lower index; `current` is the best so far.
+fn tie_prefers(i: usize, j: usize, current: usize) -> bool {
+    if current == i {
+        return true;
+    }
+    let (dj, dc) = (i.abs_diff(j), i.abs_diff(current));
+    dj < dc || (dj == dc && j < current)
+}
+
+/// Interleaves the low 10 bits of x, y, z.
+fn morton3(x: u32, y: u32, z: u32) -> u32 {
+    fn spread(v: u32) -> u32 {
+        let mut v = v & 0x3ff;
+        v = (v | (v << 16)) & 0x030000ff;
+        v = (v | (v << 8)) & 0x0300f00f;
+        v = (v | (v << 4)) & 0x030c30c3;
+        (v | (v << 2)) & 0x09249249
+    }
+    spread(x) | (spread(y) << 1) | (spread(z) << 2)
+}
+
+/// Writes the cluster tree as nodes (children adjacent, depth-first) and
+/// indices; returns the depth.
+fn emit<B: BoundingVolume>(
+    clusters: &[Cluster<B>],
+    root: u32,
+    n: usize,
+    nodes: &mut [Node<B>],
+    indices: &mut [u32],
+) -> Result<u32, Error> {
+    let too_deep = |depth: u32| Error::StackOverflow {
+        depth: depth as usize,
+        capacity: MAX_DEPTH,
+    };
+    let (mut next_slot, mut next_index, mut max_depth) = (1u32, 0u32, 0u32);
+    // (cluster, node slot, depth); one waiting sibling per level.
+    let mut stack = [(0u32, 0u32, 0u32); MAX_DEPTH + 2];
+    stack[0] = (root, 0, 0);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (c, slot, depth) = stack[top];
+        if depth as usize > MAX_DEPTH {
+            return Err(too_deep(depth));
+        }
+        max_depth = max_depth.max(depth);
+        let cl = &clusters[c as usize];
+        if cl.left == cl.right {
+            indices[next_index as usize] = cl.left;
+            nodes[slot as usize] = Node {
+                bv: cl.bv,
+                first: next_index,
+                count: 1,
+            };
+            next_index += 1;
+            continue;
+        }
+        let first = next_slot;
+        next_slot += 2;
+        nodes[slot as usize] = Node {
+            bv: cl.bv,
+            first,
+            count: 0,
+        };
+        for entry in [
+            (cl.right, first + 1, depth + 1),
+            (cl.left, first, depth + 1),
+        ] {
+            *stack.get_mut(top).ok_or(too_deep(depth + 1))? = entry;
+            top += 1;
+        }
+    }
+    debug_assert_eq!(next_index as usize, n);
+    Ok(max_depth)
+}

@@ -1,0 +1,177 @@
+//! Bottom-up builders (exhaustive and PLOC) against brute force, for every
+//! volume type, plus their pitfalls.
+
+use bvhkit::build::{BottomUp, MergeMetric, Method};
+use bvhkit::glam::Vec3;
+use bvhkit::{
+    brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Exact, Obb, Rigid, Same, Sphere,
+    TopDown, Triangle,
+};
+use bvhkit_tests::*;
+use proptest::prelude::*;
+
+fn any_bottom_up(max_exhaustive: usize, n: usize) -> impl Strategy<Value = BottomUp> {
+    let exhaustive_ok = n <= max_exhaustive;
+    (any::<bool>(), 1u32..20, any::<bool>()).prop_map(move |(exhaustive, radius, area)| BottomUp {
+        method: if exhaustive && exhaustive_ok {
+            Method::Exhaustive
+        } else {
+            Method::Ploc { radius }
+        },
+        metric: if area {
+            MergeMetric::SurfaceArea
+        } else {
+            MergeMetric::Volume
+        },
+    })
+}
+
+fn check<B: BoundingVolume>(
+    cfg: &BottomUp,
+    a: &[Triangle],
+    b: &[Triangle],
+    region: &Aabb,
+) -> Result<(), TestCaseError> {
+    let (na, ia, _) =
+        build_bottom_up::<B, _>(cfg, a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    let (nb, ib, _) =
+        build_bottom_up::<B, _>(cfg, b).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    // `open` validates: every node contains its children and primitives.
+    let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
+    let mut got = Vec::new();
+    ta.overlapping(a, region, |i| got.push(i)).unwrap();
+    got.sort_unstable();
+    let mut want = Vec::new();
+    brute_force::overlapping(a, region, |i| want.push(i));
+    prop_assert_eq!(got, want, "{} region {:?}", B::NAME, cfg);
+    let shown = TopDown::default(); // only printed in failure messages
+    check_pairs(&ta, a, &tb, b, &Same, Bounds, &shown)?;
+    let m = Rigid::new(
+        bvhkit::glam::Quat::from_rotation_z(0.3),
+        Vec3::new(0.1, 0.0, 0.0),
+    )
+    .unwrap();
+    check_pairs(&ta, a, &tb, b, &m, Exact, &shown)
+}
+
+proptest! {
+    #![proptest_config(proptest_config(32))]
+
+    #[test]
+    fn bottom_up_trees_match_brute_force(
+        (a, cfg) in scene(40).prop_flat_map(|a| { let n = a.len(); (Just(a), any_bottom_up(40, n)) }),
+        b in scene(40),
+        r in (0.0f32..1.0, 0.0f32..1.0),
+    ) {
+        let region = region_in(&a, r.0, r.1);
+        check::<Aabb>(&cfg, &a, &b, &region)?;
+        check::<Sphere>(&cfg, &a, &b, &region)?;
+        check::<Obb>(&cfg, &a, &b, &region)?;
+        check::<Dop14>(&cfg, &a, &b, &region)?;
+    }
+}
+
+/// n = 1, 2, 3 for both methods.
+#[test]
+fn tiny_inputs_build() {
+    for n in 1..=3 {
+        let tris: Vec<_> = (0..n)
+            .map(|i| {
+                Triangle::new(
+                    Vec3::X * i as f32,
+                    Vec3::X * i as f32 + Vec3::Y,
+                    Vec3::X * i as f32 + Vec3::Z,
+                )
+            })
+            .collect();
+        for cfg in [
+            BottomUp::exhaustive(MergeMetric::Volume),
+            BottomUp::default(),
+        ] {
+            let (nodes, idx, depth) = build_bottom_up::<Aabb, _>(&cfg, &tris).unwrap();
+            let t = open(&nodes, &idx, &tris);
+            assert_eq!(t.node_count(), 2 * n - 1);
+            assert!(depth < n.max(1));
+        }
+    }
+}
+
+/// Exponentially spaced points make the greedy merge build a chain; past
+/// MAX_DEPTH that must be an error, not a panic or a stack overflow.
+#[test]
+fn chains_deeper_than_the_query_stack_are_an_error() {
+    let pts: Vec<Vec3> = (0..90)
+        .map(|i| Vec3::new(1.3f32.powi(i), 0.0, 0.0))
+        .collect();
+    for cfg in [
+        BottomUp::exhaustive(MergeMetric::SurfaceArea),
+        BottomUp::default(),
+    ] {
+        match build_bottom_up::<Aabb, _>(&cfg, &pts) {
+            Err(Error::StackOverflow { depth, capacity }) => assert!(depth > capacity),
+            Ok((_, _, depth)) => assert!(depth <= bvhkit::MAX_DEPTH),
+            Err(e) => panic!("unexpected error {e}"),
+        }
+    }
+}
+
+#[test]
+fn bad_input_and_small_buffers_are_errors() {
+    let cfg = BottomUp::default();
+    assert_eq!(
+        build_bottom_up::<Aabb, Triangle>(&cfg, &[]).unwrap_err(),
+        Error::EmptyInput
+    );
+    let nan = [Triangle::new(Vec3::NAN, Vec3::X, Vec3::Y)];
+    assert!(matches!(
+        build_bottom_up::<Aabb, _>(&cfg, &nan),
+        Err(Error::NonFiniteCoordinate { primitive: 0 })
+    ));
+    let bad_radius = BottomUp {
+        method: Method::Ploc { radius: 0 },
+        metric: MergeMetric::Volume,
+    };
+    let tris = [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y); 4];
+    assert!(build_bottom_up::<Aabb, _>(&bad_radius, &tris).is_err());
+    // Scratch too small.
+    use bvhkit::build::{BottomUpScratch, Cluster};
+    let mut clusters = vec![Cluster::<Aabb>::EMPTY; 3];
+    let (mut work, mut keys) = (vec![0u32; 8], vec![0u64; 4]);
+    let mut scratch = BottomUpScratch {
+        clusters: &mut clusters,
+        work: &mut work,
+        keys: &mut keys,
+    };
+    let mut nodes = vec![bvhkit::Node::<Aabb>::EMPTY; 7];
+    let mut idx = vec![0u32; 4];
+    assert!(cfg
+        .build(&tris, &mut nodes, &mut idx, &mut scratch)
+        .is_err());
+}
+
+/// The exhaustive builder really merges the globally smallest pair first:
+/// with three clustered boxes and one far away, the far one joins last.
+#[test]
+fn exhaustive_merges_the_smallest_pair_first() {
+    let boxes = [
+        Aabb::new(Vec3::ZERO, Vec3::ONE),
+        Aabb::new(Vec3::new(1.1, 0.0, 0.0), Vec3::new(2.1, 1.0, 1.0)),
+        Aabb::new(Vec3::new(50.0, 0.0, 0.0), Vec3::new(51.0, 1.0, 1.0)),
+        Aabb::new(Vec3::new(0.0, 1.2, 0.0), Vec3::new(1.0, 2.2, 1.0)),
+    ];
+    let (nodes, idx, _) =
+        build_bottom_up::<Aabb, _>(&BottomUp::exhaustive(MergeMetric::Volume), &boxes).unwrap();
+    let t = open(&nodes, &idx, &boxes);
+    let (l, r) = t.root().children().unwrap();
+    let leaf_sides: Vec<bool> = [l, r]
+        .iter()
+        .map(|&c| t.nodes()[c as usize].is_leaf())
+        .collect();
+    // One side of the root is the far box alone.
+    let far_side = [l, r]
+        .into_iter()
+        .find(|&c| t.nodes()[c as usize].is_leaf())
+        .expect("a leaf child");
+    assert_eq!(t.leaf_primitives(&t.nodes()[far_side as usize]), &[2]);
+    assert_eq!(leaf_sides.iter().filter(|x| **x).count(), 1);
+}
