@@ -53,6 +53,32 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         })
     }
 
+    /// Builds bottom-up (scratch allocated here and dropped after the build).
+    pub fn build_bottom_up<P: Primitive>(
+        builder: &bvhkit::build::BottomUp,
+        prims: &[P],
+    ) -> Result<Self, Error> {
+        use bvhkit::build::{BottomUp, BottomUpScratch, Cluster};
+        let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
+        let mut clusters = vec![Cluster::<B>::EMPTY; nc];
+        let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+        let mut scratch = BottomUpScratch {
+            clusters: &mut clusters,
+            work: &mut work,
+            keys: &mut keys,
+        };
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len()).max(1)];
+        let mut indices = vec![0u32; prims.len()];
+        let depth = builder
+            .build(prims, &mut nodes, &mut indices, &mut scratch)?
+            .depth();
+        Ok(OwnedBvh {
+            nodes,
+            indices,
+            depth,
+        })
+    }
+
     /// The tree as the core's borrowed view.
     pub fn view(&self) -> Bvh<'_, B> {
         Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth)

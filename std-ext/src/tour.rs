@@ -15,7 +15,7 @@ use std::time::Instant;
 pub struct TourReport {
     /// The scene.
     pub scene: SceneInfo,
-    /// One row per top-down strategy (AABB trees).
+    /// One row per builder: every top-down preset, then bottom-up (AABB trees).
     pub strategies: Vec<Row>,
     /// One row per bounding volume (binned SAH trees).
     pub volumes: Vec<Row>,
@@ -109,6 +109,28 @@ fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
+/// A way to build a tree (top-down or bottom-up).
+#[derive(Clone, Copy, Debug)]
+pub enum Builder {
+    /// A top-down configuration.
+    TopDown(TopDown),
+    /// A bottom-up configuration.
+    BottomUp(bvhkit::build::BottomUp),
+}
+
+impl Builder {
+    /// Builds into owned storage.
+    pub fn build<B: BoundingVolume>(
+        &self,
+        prims: &[Triangle],
+    ) -> Result<OwnedBvh<B>, bvhkit::Error> {
+        match self {
+            Builder::TopDown(t) => OwnedBvh::build(t, prims),
+            Builder::BottomUp(b) => OwnedBvh::build_bottom_up(b, prims),
+        }
+    }
+}
+
 fn measure<B: BoundingVolume>(
     name: &str,
     builder: &TopDown,
@@ -117,9 +139,20 @@ fn measure<B: BoundingVolume>(
     reference: &[(u32, u32)],
     runs: usize,
 ) -> Result<Row, bvhkit::Error> {
-    let (build, tree_a) = median_time(runs, || OwnedBvh::<B>::build(builder, a));
+    measure_with::<B>(name, Builder::TopDown(*builder), a, b, reference, runs)
+}
+
+fn measure_with<B: BoundingVolume>(
+    name: &str,
+    builder: Builder,
+    a: &[Triangle],
+    b: &[Triangle],
+    reference: &[(u32, u32)],
+    runs: usize,
+) -> Result<Row, bvhkit::Error> {
+    let (build, tree_a) = median_time(runs, || builder.build::<B>(a));
     let tree_a = tree_a?;
-    let tree_b = OwnedBvh::<B>::build(builder, b)?;
+    let tree_b = builder.build::<B>(b)?;
     let (ta, tb) = (tree_a.view(), tree_b.view());
     let mut pairs = Vec::with_capacity(reference.len());
     let (query, found) = median_time(runs, || {
@@ -191,6 +224,16 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         progress(p.name);
         strategies.push(measure::<Aabb>(
             p.name, &p.builder, &a, &b, &reference, opts.runs,
+        )?);
+    }
+    for (name, radius) in [("ploc-r16", 16), ("ploc-r4", 4)] {
+        progress(name);
+        let builder = Builder::BottomUp(bvhkit::build::BottomUp {
+            method: bvhkit::build::Method::Ploc { radius },
+            metric: bvhkit::build::MergeMetric::SurfaceArea,
+        });
+        strategies.push(measure_with::<Aabb>(
+            name, builder, &a, &b, &reference, opts.runs,
         )?);
     }
     let sah = TopDown::sah();
@@ -308,7 +351,7 @@ pub fn render(r: &TourReport) -> String {
         r.scene.reference_ms
     );
     s += &table(
-        "Top-down strategies (AABB trees, A-vs-B query, descend the larger volume):",
+        "Builders (AABB trees; top-down presets, then bottom-up PLOC with search radius r; A-vs-B query, descend the larger volume):",
         &r.strategies,
     );
     s += &table(

@@ -5,6 +5,7 @@
 //! (Inside the normal test harness other threads allocate, so a global counter
 //! would be unreliable there.)
 
+use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, MergeMetric};
 use bvhkit::collision::{collide, BroadPhase, Object};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::{
@@ -91,9 +92,28 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
             vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(3)],
             vec![0u32; 3],
         );
+        let (bn, bw, bk) = BottomUp::scratch_len(a.len());
+        let mut clusters = vec![Cluster::<B>::EMPTY; bn];
+        let (mut work, mut keys) = (vec![0u32; bw], vec![0u64; bk]);
+        let mut bu_nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut bu_idx = vec![0u32; a.len()];
+        let mut small = vec![Node::<B>::EMPTY; bvhkit::max_nodes(60)];
+        let mut small_idx = vec![0u32; 60];
         let (trees, allocs) = count(|| {
             let ta = cfg.build_cached(&a, &mut na, &mut ia, &mut cache).unwrap();
             let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
+            let mut scratch = BottomUpScratch {
+                clusters: &mut clusters,
+                work: &mut work,
+                keys: &mut keys,
+            };
+            let ploc = BottomUp::default()
+                .build(&a, &mut bu_nodes, &mut bu_idx, &mut scratch)
+                .unwrap();
+            let exhaustive = BottomUp::exhaustive(MergeMetric::Volume)
+                .build(&a[..60], &mut small, &mut small_idx, &mut scratch)
+                .unwrap();
+            assert!(ploc.node_count() > 0 && exhaustive.node_count() > 0);
             (ta, tb)
         });
         if allocs != 0 {
