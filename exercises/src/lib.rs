@@ -75,4 +75,10 @@ pub trait Exercises {
     /// Exercise 7: the cost function `T = Nv*Cv + Np*Cp + Nu*Cu + Co` from a
     /// query's counters and the unit costs.
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64;
+
+    /// Exercise 8: the textbook bottom-up build, as its sequence of merges.
+    /// Clusters `0..n` are the boxes; merge number `k` creates cluster
+    /// `n + k`. At every step merge the two live clusters whose merged box has
+    /// the smallest volume; return the pairs `(a, b)` merged, in order.
+    fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)>;
 }

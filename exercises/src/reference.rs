@@ -118,4 +118,33 @@ impl Exercises for Reference {
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
         model.predict(counts)
     }
+
+    fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)> {
+        // Live clusters as (id, box); O(n^2) pairs per step, n - 1 steps.
+        let mut live: Vec<(u32, Aabb)> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (i as u32, *b))
+            .collect();
+        let mut merges = Vec::new();
+        let mut next = boxes.len() as u32;
+        while live.len() > 1 {
+            let (mut best, mut pair) = (f32::INFINITY, (0, 1));
+            for i in 0..live.len() {
+                for j in i + 1..live.len() {
+                    let v = live[i].1.union(&live[j].1).volume();
+                    if v < best {
+                        (best, pair) = (v, (i, j));
+                    }
+                }
+            }
+            let (i, j) = pair;
+            let merged = live[i].1.union(&live[j].1);
+            merges.push((live[i].0, live[j].0));
+            live[i] = (next, merged);
+            live.swap_remove(j);
+            next += 1;
+        }
+        merges
+    }
 }

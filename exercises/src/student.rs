@@ -96,4 +96,12 @@ impl Exercises for Student {
         let _ = (counts, model);
         todo!("exercise 7")
     }
+
+    /// Hint: keep a list of live clusters (id and box). At each step try every
+    /// pair, merge the one whose *merged* box has the smallest volume, and
+    /// replace the two by the new cluster (id `n + k` for the k-th merge).
+    fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)> {
+        let _ = boxes;
+        todo!("exercise 8")
+    }
 }
