@@ -30,7 +30,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 8] = [
+pub const EXERCISES: [(u32, &str); 9] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -39,6 +39,7 @@ pub const EXERCISES: [(u32, &str); 8] = [
     (6, "traversal with a fixed stack"),
     (7, "the cost function T"),
     (8, "bottom-up construction: greedy merges"),
+    (9, "refit after motion"),
 ];
 
 /// A score for one exercise.
@@ -490,6 +491,41 @@ pub fn checks() -> Vec<Check> {
                 e.bottom_up_merges(&one).is_empty() && replay(&two, &e.bottom_up_merges(&two), true)
             },
         },
+        // Exercise 9
+        Check {
+            exercise: 9,
+            name: "leaves fit their moved primitives exactly",
+            points: 4,
+            run: |e| {
+                [(50, 1), (300, 2)].iter().all(|&(n, seed)| {
+                    let (got, want) = refit_case(e, n, seed);
+                    got.iter()
+                        .zip(&want)
+                        .filter(|(_, w)| w.is_leaf())
+                        .all(|(g, w)| g.bv == w.bv)
+                })
+            },
+        },
+        Check {
+            exercise: 9,
+            name: "every parent is the union of its children (up to the root)",
+            points: 4,
+            run: |e| {
+                [(50, 3), (300, 4)].iter().all(|&(n, seed)| {
+                    let (got, want) = refit_case(e, n, seed);
+                    got == want
+                })
+            },
+        },
+        Check {
+            exercise: 9,
+            name: "a tree of one leaf",
+            points: 2,
+            run: |e| {
+                let (got, want) = refit_case(e, 1, 5);
+                got == want
+            },
+        },
     ]
 }
 
@@ -553,6 +589,34 @@ fn merge_sets() -> Vec<Vec<Aabb>> {
     sets
 }
 
+/// Builds a tree over boxes, moves every third box, and returns the
+/// student's refit next to the library's.
+fn refit_case(e: &dyn Exercises, n: usize, seed: u64) -> (Vec<Node<Aabb>>, Vec<Node<Aabb>>) {
+    let t = Tree::new(boxes(n, seed, Vec3::ZERO), 2);
+    let used = t.bvh().node_count();
+    let mut r = Rng(seed + 1);
+    let moved: Vec<Aabb> = t
+        .prims
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            if i % 3 == 0 {
+                let d = r.point(6.0, Vec3::ZERO);
+                Aabb::new(b.min + d, b.max + d)
+            } else {
+                *b
+            }
+        })
+        .collect();
+    let mut student = t.nodes[..used].to_vec();
+    e.refit(&mut student, &t.indices, &moved);
+    let mut want = t.nodes[..used].to_vec();
+    if let Err(err) = bvhkit::build::refit_all(&mut want, &t.indices, &moved, 0.0, ()) {
+        panic!("grader refit: {err}");
+    }
+    (student, want)
+}
+
 /// A tree over boxes, with its storage.
 struct Tree {
     prims: Vec<Aabb>,
@@ -566,10 +630,11 @@ impl Tree {
         let builder = TopDown::default().with_max_leaf_size(leaf);
         let mut nodes = vec![Node::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
-        let depth = match builder.build(&prims, &mut nodes, &mut indices) {
-            Ok(t) => t.depth(),
+        let (depth, used) = match builder.build(&prims, &mut nodes, &mut indices) {
+            Ok(t) => (t.depth(), t.node_count()),
             Err(e) => panic!("grader tree: {e}"),
         };
+        nodes.truncate(used);
         Tree {
             prims,
             nodes,
@@ -759,7 +824,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 100/100 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 110/110 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -920,6 +985,33 @@ mod tests {
                 _ => Reference.bottom_up_merges(boxes),
             }
         }
+        fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]) {
+            let leaf = |n: &Node<Aabb>| {
+                indices[n.first as usize..(n.first + n.count) as usize]
+                    .iter()
+                    .fold(Aabb::EMPTY, |b, &p| b.union(&prims[p as usize]))
+            };
+            match self.0 {
+                // Only the leaves: parents keep their old boxes.
+                16 => {
+                    for i in 0..nodes.len() {
+                        if nodes[i].is_leaf() {
+                            nodes[i].bv = leaf(&nodes[i]);
+                        }
+                    }
+                }
+                // Front to back: parents are merged from stale children.
+                17 => {
+                    for i in 0..nodes.len() {
+                        nodes[i].bv = match nodes[i].children() {
+                            Some((l, r)) => nodes[l as usize].bv.union(&nodes[r as usize].bv),
+                            None => leaf(&nodes[i]),
+                        };
+                    }
+                }
+                _ => Reference.refit(nodes, indices, prims),
+            }
+        }
     }
 
     #[test]
@@ -940,6 +1032,8 @@ mod tests {
             (13, 7),
             (14, 8),
             (15, 8),
+            (16, 9),
+            (17, 9),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(

@@ -81,4 +81,9 @@ pub trait Exercises {
     /// `n + k`. At every step merge the two live clusters whose merged box has
     /// the smallest volume; return the pairs `(a, b)` merged, in order.
     fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)>;
+
+    /// Exercise 9: refit a tree after its primitives moved. Every leaf box
+    /// becomes the union of its primitives' boxes, every internal box the
+    /// union of its two children. Children are stored after their parent.
+    fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]);
 }

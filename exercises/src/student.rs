@@ -104,4 +104,12 @@ impl Exercises for Student {
         let _ = boxes;
         todo!("exercise 8")
     }
+
+    /// Hint: walk the node array from the *end*: children come after their
+    /// parent, so they are done first. A leaf's primitives are
+    /// `indices[first .. first + count]`.
+    fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]) {
+        let _ = (nodes, indices, prims);
+        todo!("exercise 9")
+    }
 }

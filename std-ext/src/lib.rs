@@ -8,6 +8,7 @@
 pub mod collide;
 pub mod cost;
 pub mod mesh;
+pub mod motion;
 pub mod scene;
 pub mod tour;
 

@@ -5,7 +5,7 @@
 //! (Inside the normal test harness other threads allocate, so a global counter
 //! would be unreliable there.)
 
-use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, MergeMetric};
+use bvhkit::build::{refit_all, BottomUp, BottomUpScratch, Cluster, MergeMetric, Refit};
 use bvhkit::collision::{collide, BroadPhase, Object};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::{
@@ -119,6 +119,27 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         if allocs != 0 {
             failures.push(format!(
                 "{} {name}: build allocated {allocs} times",
+                B::NAME
+            ));
+        }
+        // Refits of a separate copy of tree A's storage, after a motion.
+        let mut rn = trees.0.nodes().to_vec();
+        let ri = trees.0.indices().to_vec();
+        let used = rn.len();
+        let moved: Vec<Triangle> = a
+            .iter()
+            .map(|t| t.translated(Vec3::new(0.3, 0.0, 0.1)))
+            .collect();
+        let (mut parents, mut leaf_of) = (vec![0u32; used], vec![0u32; a.len()]);
+        let ids: Vec<u32> = (0..a.len() as u32).step_by(3).collect();
+        let (_, allocs) = count(|| {
+            refit_all(&mut rn, &ri, &moved, 0.05, ()).unwrap();
+            let refit = Refit::new(&rn, &ri, &mut parents, &mut leaf_of).unwrap();
+            refit.moved(&mut rn, &ri, &a, &ids, 0.0, ()).unwrap();
+        });
+        if allocs != 0 {
+            failures.push(format!(
+                "{} {name}: refit allocated {allocs} times",
                 B::NAME
             ));
         }

@@ -8,11 +8,13 @@
 
 mod bottom_up;
 mod presets;
+mod refit;
 mod strategy;
 mod top_down;
 
 pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
 pub use presets::{Preset, PRESETS};
+pub use refit::{refit_all, Refit};
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
 pub use top_down::{PrimitiveRef, TopDown};
