@@ -994,10 +994,8 @@ mod tests {
             match self.0 {
                 // Only the leaves: parents keep their old boxes.
                 16 => {
-                    for i in 0..nodes.len() {
-                        if nodes[i].is_leaf() {
-                            nodes[i].bv = leaf(&nodes[i]);
-                        }
+                    for n in nodes.iter_mut().filter(|n| n.is_leaf()) {
+                        n.bv = leaf(n);
                     }
                 }
                 // Front to back: parents are merged from stale children.
