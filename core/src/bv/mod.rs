@@ -197,4 +197,14 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     fn transformed(&self, t: &crate::Rigid) -> Self {
         Self::from_aabb(&t.apply_aabb(&self.aabb()))
     }
+
+    /// Like [`transformed`](Self::transformed), but also containing the
+    /// axis-aligned box (in the new frame) of every moved point set inside.
+    /// Queries whose answer compares primitive *boxes* after a motion need
+    /// this: a moved sphere contains a moved triangle, but not that
+    /// triangle's new bounding box. Volumes whose `transformed` goes through
+    /// a box (the default) already satisfy it.
+    fn transformed_with_boxes(&self, t: &crate::Rigid) -> Self {
+        self.transformed(t)
+    }
 }

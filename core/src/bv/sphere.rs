@@ -508,4 +508,19 @@ impl BoundingVolume for Sphere {
         let r = self.radius as f64 + 4.0 * f32::EPSILON as f64 * scale;
         Sphere::new(c, crate::round::up(r))
     }
+
+    /// The moved sphere's radius times sqrt(3): the ball around the cube that
+    /// bounds the moved ball, so it contains the new bounding box of anything
+    /// inside.
+    fn transformed_with_boxes(&self, t: &crate::Rigid) -> Self {
+        let s = self.transformed(t);
+        if s.is_empty() {
+            return s;
+        }
+        // sqrt(3) rounded up, then the product rounded up.
+        Sphere::new(
+            s.center,
+            crate::round::up(s.radius as f64 * 1.732_050_807_568_877_3 * (1.0 + 1e-15)),
+        )
+    }
 }

@@ -88,8 +88,13 @@ impl PairTraversal {
 pub trait Frame {
     /// Whether volumes of B are moved (each move counts as an update, `Nu`).
     const MOVES: bool;
-    /// A volume of B, in A's frame.
+    /// A volume of B, in A's frame: contains every moved point of `bv`.
     fn bv<B: BoundingVolume>(&self, bv: &B) -> B;
+    /// A volume of B, in A's frame, that also contains the new bounding box
+    /// of anything inside (see [`BoundingVolume::transformed_with_boxes`]).
+    fn bv_with_boxes<B: BoundingVolume>(&self, bv: &B) -> B {
+        self.bv(bv)
+    }
 }
 
 /// Places a primitive of B in A's frame.
@@ -124,6 +129,10 @@ impl Frame for Rigid {
     fn bv<B: BoundingVolume>(&self, bv: &B) -> B {
         bv.transformed(self)
     }
+    #[inline]
+    fn bv_with_boxes<B: BoundingVolume>(&self, bv: &B) -> B {
+        bv.transformed_with_boxes(self)
+    }
 }
 
 impl<Q: Transform> Place<Q> for Rigid {
@@ -135,6 +144,12 @@ impl<Q: Transform> Place<Q> for Rigid {
 
 /// Decides whether a primitive pair (B's already in A's frame) is an answer.
 pub trait Answer<P, Q> {
+    /// Whether every accepted pair shares a point of the two primitives
+    /// themselves (an exact test). Then a moved tree B only needs volumes
+    /// containing its moved primitives. Answers that compare *boxes* (the
+    /// default, `false`) need B's moved volumes to contain the primitives'
+    /// new boxes too, which for spheres is looser.
+    const POINTWISE: bool = false;
     /// `true` to report the pair.
     fn accept(&mut self, p: &P, q: &Q) -> bool;
 }
@@ -157,6 +172,7 @@ impl<P: Primitive, Q: Primitive> Answer<P, Q> for Bounds {
 pub struct Exact;
 
 impl<P: Primitive + Intersects<Q>, Q: Primitive> Answer<P, Q> for Exact {
+    const POINTWISE: bool = true;
     #[inline]
     fn accept(&mut self, p: &P, q: &Q) -> bool {
         p.bounds().overlaps(&q.bounds()) && p.intersects(q)
@@ -352,6 +368,7 @@ where
             a: self.a,
             b: self.b,
             frame: &self.frame,
+            with_boxes: !X::POINTWISE,
             tally: self.tally,
             leaf: |p: u32, q: u32| {
                 let placed = match &mut placed {
@@ -417,6 +434,9 @@ struct Walk<'q, B, F, T, L> {
     a: &'q Bvh<'q, B>,
     b: &'q Bvh<'q, B>,
     frame: &'q F,
+    /// Move B's volumes so that they contain their primitives' new boxes
+    /// (for box-comparing answers).
+    with_boxes: bool,
     tally: T,
     leaf: L,
 }
@@ -443,10 +463,16 @@ where
     /// B's node volume in A's frame.
     #[inline(always)]
     fn b_bv(&mut self, j: u32) -> B {
-        if F::MOVES {
-            self.tally.updates(1);
+        if !F::MOVES {
+            return self.frame.bv(&self.b.nodes()[j as usize].bv);
         }
-        self.frame.bv(&self.b.nodes()[j as usize].bv)
+        self.tally.updates(1);
+        let bv = &self.b.nodes()[j as usize].bv;
+        if self.with_boxes {
+            self.frame.bv_with_boxes(bv)
+        } else {
+            self.frame.bv(bv)
+        }
     }
 
     #[inline(always)]
