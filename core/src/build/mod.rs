@@ -7,12 +7,14 @@
 //! anything. Bottom-up and insertion builders come with their own modules.
 
 mod bottom_up;
+mod dynamic;
 mod presets;
 mod refit;
 mod strategy;
 mod top_down;
 
 pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
+pub use dynamic::{DynNode, DynamicConfig, DynamicTree, Insertion, SiblingSearch, NULL};
 pub use presets::{Preset, PRESETS};
 pub use refit::{refit_all, Refit};
 

@@ -1,0 +1,756 @@
+//! Insertion construction: a tree that grows one object at a time.
+//!
+//! Lecture: *insertion construction* (Goldsmith and Salmon). An object is
+//! inserted next to the node (its *sibling*) where it costs least: the cost
+//! of a sibling is the surface area of the new parent that joins them, plus
+//! the growth of every ancestor's area caused by the object. Two searches:
+//!
+//! - [`SiblingSearch::Descent`]: one walk from the root, always into the
+//!   cheaper child, stopping when staying is cheaper (`O(log n)` per insert);
+//! - [`SiblingSearch::BranchAndBound`]: the best sibling of the whole tree,
+//!   exploring a subtree only while its lower bound beats the best found.
+//!
+//! The same tree supports removal and updates of moving objects with fat
+//! (enlarged) leaf volumes: an object that moves but stays inside its fat
+//! volume needs no work; one that leaves it is reinserted. Optional rotations
+//! (exchanging a node with a grandchild when heights differ by more than one)
+//! keep the tree shallow even for sorted input.
+//!
+//! Storage is the caller's ([`DynNode`] array of `2n - 1` entries for `n`
+//! objects); [`DynamicTree::to_bvh`] writes the tree in the layout every query
+//! of this crate runs on.
+
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::{validate, Primitive};
+use crate::tree::{Bvh, Node, MAX_DEPTH};
+use crate::Error;
+use glam::Vec3;
+
+/// No node.
+pub const NULL: u32 = u32::MAX;
+
+/// One node of a [`DynamicTree`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DynNode<B> {
+    /// Volume (for a leaf: the fat volume of its object).
+    pub bv: B,
+    /// Parent, or [`NULL`] for the root. In the free list: the next free node.
+    pub parent: u32,
+    /// Children; `left == NULL` for a leaf.
+    pub left: u32,
+    /// Second child.
+    pub right: u32,
+    /// The object of a leaf.
+    pub item: u32,
+    /// Height: 0 for a leaf; `u32::MAX` for a free node.
+    pub height: u32,
+}
+
+impl<B: BoundingVolume> DynNode<B> {
+    /// A blank node, for initialising storage.
+    pub const EMPTY: Self = DynNode {
+        bv: B::EMPTY,
+        parent: NULL,
+        left: NULL,
+        right: NULL,
+        item: 0,
+        height: u32::MAX,
+    };
+
+    fn is_leaf(&self) -> bool {
+        self.left == NULL
+    }
+}
+
+/// How an insertion picks the sibling of the new leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SiblingSearch {
+    /// One root-to-leaf walk (Goldsmith–Salmon): cheap, good enough.
+    Descent,
+    /// Branch and bound over the whole tree: the cheapest sibling.
+    #[default]
+    BranchAndBound,
+}
+
+/// Options of a [`DynamicTree`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DynamicConfig {
+    /// Sibling search.
+    pub search: SiblingSearch,
+    /// Rebalance by rotations after inserts and removals.
+    pub rotations: bool,
+    /// How much each leaf volume is enlarged beyond its object's box.
+    pub margin: f32,
+}
+
+impl Default for DynamicConfig {
+    fn default() -> Self {
+        DynamicConfig {
+            search: SiblingSearch::BranchAndBound,
+            rotations: true,
+            margin: 0.0,
+        }
+    }
+}
+
+/// A tree built by insertion, with removal and updates, in caller storage.
+///
+/// ```
+/// use bvhkit::build::{DynNode, DynamicConfig, DynamicTree};
+/// use bvhkit::{Aabb, Node};
+/// use glam::Vec3;
+/// let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 100 - 1];
+/// let mut tree = DynamicTree::new(&mut storage, DynamicConfig { margin: 0.1, ..Default::default() })?;
+/// let mut handles = Vec::new();
+/// for i in 0..100 {
+///     let lo = Vec3::new(i as f32, 0.0, 0.0);
+///     handles.push(tree.insert(i, &Aabb::new(lo, lo + 0.5))?);
+/// }
+/// assert_eq!(tree.len(), 100);
+/// assert!(tree.height() <= 12); // rotations keep sorted input shallow
+/// // A small move stays inside the fat leaf: nothing to do.
+/// let lo = Vec3::new(3.05, 0.0, 0.0);
+/// assert!(!tree.update(handles[3], &Aabb::new(lo, lo + 0.5))?);
+/// tree.remove(handles[7])?;
+/// assert_eq!(tree.len(), 99);
+/// // Export to the layout every query runs on.
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; 2 * 99 - 1];
+/// let mut idx = vec![0u32; 99];
+/// let bvh = tree.to_bvh(&mut nodes, &mut idx)?;
+/// assert_eq!(bvh.node_count(), 197);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct DynamicTree<'s, B> {
+    nodes: &'s mut [DynNode<B>],
+    root: u32,
+    free: u32,
+    leaves: u32,
+    config: DynamicConfig,
+}
+
+fn area<B: BoundingVolume>(b: &B) -> f64 {
+    b.surface_area() as f64
+}
+
+/// A volume containing both, as tight as `merge` makes it.
+fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
+    let mut pick = l.merge(r);
+    for _ in 0..4 {
+        if pick.contains(l) && pick.contains(r) {
+            break;
+        }
+        pick = pick.merge(l).merge(r);
+    }
+    pick
+}
+
+impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
+    /// An empty tree over `storage` (room for `(storage.len() + 1) / 2` objects).
+    pub fn new(storage: &'s mut [DynNode<B>], config: DynamicConfig) -> Result<Self, Error> {
+        if !(config.margin >= 0.0 && config.margin.is_finite()) {
+            return Err(Error::InvalidConfig("the margin must be finite and >= 0"));
+        }
+        if storage.len() >= NULL as usize {
+            return Err(Error::IndexOverflow {
+                count: storage.len(),
+            });
+        }
+        let n = storage.len();
+        for (i, node) in storage.iter_mut().enumerate() {
+            *node = DynNode::EMPTY;
+            node.parent = if i + 1 < n { i as u32 + 1 } else { NULL };
+        }
+        Ok(DynamicTree {
+            nodes: storage,
+            root: NULL,
+            free: if n > 0 { 0 } else { NULL },
+            leaves: 0,
+            config,
+        })
+    }
+
+    /// Objects in the tree.
+    pub fn len(&self) -> usize {
+        self.leaves as usize
+    }
+
+    /// Whether the tree holds no object.
+    pub fn is_empty(&self) -> bool {
+        self.leaves == 0
+    }
+
+    /// Height of the root (0 for one leaf or an empty tree).
+    pub fn height(&self) -> usize {
+        if self.root == NULL {
+            0
+        } else {
+            self.nodes[self.root as usize].height as usize
+        }
+    }
+
+    /// Sum of the surface areas of all nodes (the quantity insertion minimises).
+    pub fn area_sum(&self) -> f64 {
+        let mut sum = 0.0;
+        self.for_each_node(|n| sum += area(&n.bv));
+        sum
+    }
+
+    fn for_each_node(&self, mut f: impl FnMut(&DynNode<B>)) {
+        if self.root == NULL {
+            return;
+        }
+        let mut stack = [NULL; 2 * MAX_DEPTH + 2];
+        stack[0] = self.root;
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = &self.nodes[stack[top] as usize];
+            f(n);
+            if !n.is_leaf() && top + 2 <= stack.len() {
+                stack[top] = n.left;
+                stack[top + 1] = n.right;
+                top += 2;
+            }
+        }
+    }
+
+    fn allocate(&mut self) -> Result<u32, Error> {
+        if self.free == NULL {
+            return Err(Error::NodeCapacity {
+                needed: self.nodes.len() + 2,
+                available: self.nodes.len(),
+            });
+        }
+        let i = self.free;
+        self.free = self.nodes[i as usize].parent;
+        self.nodes[i as usize] = DynNode {
+            height: 0,
+            ..DynNode::EMPTY
+        };
+        Ok(i)
+    }
+
+    fn release(&mut self, i: u32) {
+        self.nodes[i as usize] = DynNode {
+            parent: self.free,
+            ..DynNode::EMPTY
+        };
+        self.free = i;
+    }
+
+    fn fat(&self, item: u32, bounds: &Aabb) -> Result<B, Error> {
+        if !bounds.is_finite() || bounds.min.cmpgt(bounds.max).any() {
+            return Err(Error::NonFiniteCoordinate {
+                primitive: item as usize,
+            });
+        }
+        let limit = crate::MAX_COORDINATE - self.config.margin;
+        if bounds.min.abs().max(bounds.max.abs()).max_element() > limit {
+            return Err(Error::CoordinateOutOfRange {
+                primitive: item as usize,
+            });
+        }
+        let m = Vec3::splat(self.config.margin);
+        Ok(B::from_aabb(&Aabb::new(bounds.min - m, bounds.max + m)))
+    }
+
+    /// Inserts object `item` with bounds `bounds`; returns its leaf handle.
+    /// Errors: non-finite bounds, storage full, or (without rotations) a tree
+    /// that would get deeper than [`MAX_DEPTH`]; the tree is unchanged then.
+    pub fn insert(&mut self, item: u32, bounds: &Aabb) -> Result<u32, Error> {
+        let bv = self.fat(item, bounds)?;
+        if self.free == NULL || (self.root != NULL && self.nodes[self.free as usize].parent == NULL)
+        {
+            // A new object needs a leaf and a parent.
+            return Err(Error::NodeCapacity {
+                needed: 2 * self.leaves as usize + 1,
+                available: self.nodes.len(),
+            });
+        }
+        let leaf = self.allocate()?;
+        self.nodes[leaf as usize].bv = bv;
+        self.nodes[leaf as usize].item = item;
+        if let Err(e) = self.attach(leaf) {
+            self.release(leaf);
+            return Err(e);
+        }
+        self.leaves += 1;
+        Ok(leaf)
+    }
+
+    /// Removes the object of leaf `leaf`.
+    pub fn remove(&mut self, leaf: u32) -> Result<(), Error> {
+        self.check_leaf(leaf)?;
+        self.detach(leaf);
+        self.release(leaf);
+        self.leaves -= 1;
+        Ok(())
+    }
+
+    /// Tells the tree that the object of `leaf` now has `bounds`. Returns
+    /// `false` when the bounds are still inside the leaf's fat volume (nothing
+    /// changed), `true` when the leaf was reinserted with a new fat volume.
+    /// An error other than bad bounds (only possible without rotations, for a
+    /// tree at [`MAX_DEPTH`]) removes the object; the error says why.
+    pub fn update(&mut self, leaf: u32, bounds: &Aabb) -> Result<bool, Error> {
+        self.check_leaf(leaf)?;
+        let item = self.nodes[leaf as usize].item;
+        let bv = self.fat(item, bounds)?;
+        if self.nodes[leaf as usize].bv.contains_aabb(bounds) {
+            return Ok(false);
+        }
+        self.detach(leaf);
+        self.nodes[leaf as usize].bv = bv;
+        if let Err(e) = self.attach(leaf) {
+            // Only possible without rotations: retry once with them, which
+            // shortens the path the leaf went down.
+            let rotations = self.config.rotations;
+            self.config.rotations = true;
+            let retry = self.attach(leaf);
+            self.config.rotations = rotations;
+            if retry.is_err() {
+                self.release(leaf);
+                self.leaves -= 1;
+                return Err(e); // the object is no longer in the tree
+            }
+        }
+        Ok(true)
+    }
+
+    fn check_leaf(&self, leaf: u32) -> Result<(), Error> {
+        match self.nodes.get(leaf as usize) {
+            Some(n) if n.height == 0 && n.is_leaf() => Ok(()),
+            _ => Err(Error::InvalidConfig("not a leaf handle of this tree")),
+        }
+    }
+
+    /// The cost of making `sibling` the sibling of a new leaf with volume
+    /// `bv`: the new parent's area plus the growth of every ancestor.
+    pub fn insertion_cost(&self, sibling: u32, bv: &B) -> f64 {
+        let mut cost = area(&self.nodes[sibling as usize].bv.merge(bv));
+        let mut a = self.nodes[sibling as usize].parent;
+        while a != NULL {
+            let node = &self.nodes[a as usize].bv;
+            cost += area(&node.merge(bv)) - area(node);
+            a = self.nodes[a as usize].parent;
+        }
+        cost
+    }
+
+    fn best_sibling(&self, bv: &B) -> u32 {
+        match self.config.search {
+            SiblingSearch::Descent => {
+                let mut n = self.root;
+                let mut inherited = 0.0;
+                while !self.nodes[n as usize].is_leaf() {
+                    let node = &self.nodes[n as usize];
+                    let combined = area(&node.bv.merge(bv));
+                    let here = combined + inherited;
+                    let grow = inherited + combined - area(&node.bv);
+                    let child_cost = |c: u32| {
+                        let cb = &self.nodes[c as usize].bv;
+                        let m = area(&cb.merge(bv));
+                        grow + if self.nodes[c as usize].is_leaf() {
+                            m
+                        } else {
+                            // Lower bound below c: its growth is at least this.
+                            m - area(cb) + area(bv)
+                        }
+                    };
+                    let (cl, cr) = (child_cost(node.left), child_cost(node.right));
+                    if here <= cl && here <= cr {
+                        break;
+                    }
+                    inherited = grow;
+                    n = if cl <= cr { node.left } else { node.right };
+                }
+                n
+            }
+            SiblingSearch::BranchAndBound => {
+                let mut best = (f64::INFINITY, self.root);
+                let mut stack = [(NULL, 0.0f64); 2 * MAX_DEPTH + 2];
+                stack[0] = (self.root, 0.0);
+                let mut top = 1;
+                let own = area(bv);
+                while top > 0 {
+                    top -= 1;
+                    let (n, inherited) = stack[top];
+                    let node = &self.nodes[n as usize];
+                    let direct = area(&node.bv.merge(bv));
+                    let cost = direct + inherited;
+                    if cost < best.0 {
+                        best = (cost, n);
+                    }
+                    let below = inherited + direct - area(&node.bv);
+                    // Any sibling below costs at least the new leaf's own area.
+                    if !node.is_leaf() && own + below < best.0 && top + 2 <= stack.len() {
+                        stack[top] = (node.right, below);
+                        stack[top + 1] = (node.left, below);
+                        top += 2;
+                    }
+                }
+                best.1
+            }
+        }
+    }
+
+    /// Links a detached leaf into the tree.
+    fn attach(&mut self, leaf: u32) -> Result<(), Error> {
+        if self.root == NULL {
+            self.root = leaf;
+            self.nodes[leaf as usize].parent = NULL;
+            return Ok(());
+        }
+        let bv = self.nodes[leaf as usize].bv;
+        let sibling = self.best_sibling(&bv);
+        let parent = self.allocate()?;
+        let old_parent = self.nodes[sibling as usize].parent;
+        let sb = self.nodes[sibling as usize].bv;
+        self.nodes[parent as usize] = DynNode {
+            bv: enclose(&sb, &bv),
+            parent: old_parent,
+            left: sibling,
+            right: leaf,
+            item: 0,
+            height: self.nodes[sibling as usize].height + 1,
+        };
+        self.nodes[sibling as usize].parent = parent;
+        self.nodes[leaf as usize].parent = parent;
+        if old_parent == NULL {
+            self.root = parent;
+        } else if self.nodes[old_parent as usize].left == sibling {
+            self.nodes[old_parent as usize].left = parent;
+        } else {
+            self.nodes[old_parent as usize].right = parent;
+        }
+        self.fix_upwards(parent);
+        if self.height() > MAX_DEPTH {
+            let h = self.height();
+            self.detach(leaf);
+            return Err(Error::StackOverflow {
+                depth: h,
+                capacity: MAX_DEPTH,
+            });
+        }
+        Ok(())
+    }
+
+    /// Unlinks a leaf (not freed); its sibling takes the parent's place.
+    fn detach(&mut self, leaf: u32) {
+        if leaf == self.root {
+            self.root = NULL;
+            return;
+        }
+        let parent = self.nodes[leaf as usize].parent;
+        let grand = self.nodes[parent as usize].parent;
+        let p = self.nodes[parent as usize];
+        let sibling = if p.left == leaf { p.right } else { p.left };
+        self.nodes[sibling as usize].parent = grand;
+        if grand == NULL {
+            self.root = sibling;
+        } else {
+            if self.nodes[grand as usize].left == parent {
+                self.nodes[grand as usize].left = sibling;
+            } else {
+                self.nodes[grand as usize].right = sibling;
+            }
+            self.fix_upwards(grand);
+        }
+        self.release(parent);
+        self.nodes[leaf as usize].parent = NULL;
+    }
+
+    /// Refits volumes and heights from `n` to the root, rotating if enabled.
+    fn fix_upwards(&mut self, mut n: u32) {
+        while n != NULL {
+            if self.config.rotations {
+                n = self.rotate(n);
+            }
+            let node = self.nodes[n as usize];
+            let (l, r) = (
+                &self.nodes[node.left as usize],
+                &self.nodes[node.right as usize],
+            );
+            let height = 1 + l.height.max(r.height);
+            let bv = enclose(&l.bv, &r.bv);
+            self.nodes[n as usize].height = height;
+            self.nodes[n as usize].bv = bv;
+            n = node.parent;
+        }
+    }
+
+    /// If the children's heights differ by more than one, lift the taller
+    /// child into `a`'s place, `a` keeping the shorter grandchild (a tree
+    /// rotation), then balance the demoted `a` the same way; returns the node
+    /// now at `a`'s place.
+    fn rotate(&mut self, a: u32) -> u32 {
+        let na = self.nodes[a as usize];
+        if na.is_leaf() || na.height < 2 {
+            return a;
+        }
+        let (b, c) = (na.left, na.right);
+        let balance = self.nodes[c as usize].height as i64 - self.nodes[b as usize].height as i64;
+        let (up, keep, up_is_right) = if balance > 1 {
+            (c, b, true)
+        } else if balance < -1 {
+            (b, c, false)
+        } else {
+            return a;
+        };
+        let nu = self.nodes[up as usize];
+        let (f, g) = (nu.left, nu.right);
+        // `up` takes `a`'s place; `a` becomes a child of `up`.
+        self.nodes[up as usize].parent = na.parent;
+        self.nodes[a as usize].parent = up;
+        if na.parent == NULL {
+            self.root = up;
+        } else if self.nodes[na.parent as usize].left == a {
+            self.nodes[na.parent as usize].left = up;
+        } else {
+            self.nodes[na.parent as usize].right = up;
+        }
+        // The taller grandchild stays under `up`; the other moves to `a`.
+        let (stay, moves) = if self.nodes[f as usize].height > self.nodes[g as usize].height {
+            (f, g)
+        } else {
+            (g, f)
+        };
+        self.nodes[up as usize].left = a;
+        self.nodes[up as usize].right = stay;
+        if up_is_right {
+            self.nodes[a as usize].right = moves;
+        } else {
+            self.nodes[a as usize].left = moves;
+        }
+        self.nodes[moves as usize].parent = a;
+        let (kb, mb) = (self.nodes[keep as usize], self.nodes[moves as usize]);
+        self.nodes[a as usize].bv = enclose(&kb.bv, &mb.bv);
+        self.nodes[a as usize].height = 1 + kb.height.max(mb.height);
+        // The demoted node may itself be out of balance now (its new child
+        // can be much taller than the one it kept): balance it too. Heights
+        // shrink on the way down, so this ends.
+        self.rotate(a);
+        let (l, r) = (self.nodes[up as usize].left, self.nodes[up as usize].right);
+        let (lb, rb) = (self.nodes[l as usize], self.nodes[r as usize]);
+        self.nodes[up as usize].bv = enclose(&lb.bv, &rb.bv);
+        self.nodes[up as usize].height = 1 + lb.height.max(rb.height);
+        up
+    }
+
+    /// Checks the structure: parent and child links agree, heights are exact,
+    /// every volume contains its children, the tree holds `len()` leaves and
+    /// `2 * len() - 1` nodes, and every other node is on the free list (no
+    /// node leaks after removals).
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = Error::InvalidTree;
+        let mut reached = 0usize;
+        let mut leaves = 0usize;
+        if self.root != NULL {
+            if self.nodes[self.root as usize].parent != NULL {
+                return Err(bad("the root has a parent"));
+            }
+            let mut stack = [NULL; 2 * MAX_DEPTH + 2];
+            stack[0] = self.root;
+            let mut top = 1;
+            while top > 0 {
+                top -= 1;
+                let i = stack[top];
+                let n = &self.nodes[i as usize];
+                reached += 1;
+                if reached > self.nodes.len() {
+                    return Err(bad("a cycle in the child links"));
+                }
+                if n.is_leaf() {
+                    leaves += 1;
+                    if n.height != 0 {
+                        return Err(bad("a leaf with a non-zero height"));
+                    }
+                    continue;
+                }
+                let (l, r) = (&self.nodes[n.left as usize], &self.nodes[n.right as usize]);
+                if l.parent != i || r.parent != i {
+                    return Err(bad("a child does not point back to its parent"));
+                }
+                if n.height != 1 + l.height.max(r.height) {
+                    return Err(bad("a stale height"));
+                }
+                if !n.bv.contains(&l.bv) || !n.bv.contains(&r.bv) {
+                    return Err(bad("a volume does not contain its children"));
+                }
+                if top + 2 > stack.len() {
+                    return Err(bad("deeper than MAX_DEPTH"));
+                }
+                stack[top] = n.left;
+                stack[top + 1] = n.right;
+                top += 2;
+            }
+        }
+        if leaves != self.leaves as usize || reached != (2 * leaves).saturating_sub(1) {
+            return Err(bad("leaf or node count differs from the live count"));
+        }
+        let mut free = 0usize;
+        let mut f = self.free;
+        while f != NULL {
+            free += 1;
+            if free > self.nodes.len() {
+                return Err(bad("a cycle in the free list"));
+            }
+            f = self.nodes[f as usize].parent;
+        }
+        if free + reached != self.nodes.len() {
+            return Err(bad("nodes leaked: neither in the tree nor free"));
+        }
+        Ok(())
+    }
+
+    /// Writes the tree in the query layout (children adjacent, one object per
+    /// leaf): `nodes` needs `2 * len() - 1` entries, `indices` `len()`.
+    pub fn to_bvh<'a>(
+        &self,
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+    ) -> Result<Bvh<'a, B>, Error> {
+        if self.root == NULL {
+            return Err(Error::EmptyInput);
+        }
+        let n = self.leaves as usize;
+        let needed = 2 * n - 1;
+        if nodes.len() < needed {
+            return Err(Error::NodeCapacity {
+                needed,
+                available: nodes.len(),
+            });
+        }
+        if indices.len() < n {
+            return Err(Error::IndexCapacity {
+                needed: n,
+                available: indices.len(),
+            });
+        }
+        let (mut next_slot, mut next_index) = (1u32, 0u32);
+        let mut stack = [(NULL, 0u32); MAX_DEPTH + 2];
+        stack[0] = (self.root, 0);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (d, slot) = stack[top];
+            let node = &self.nodes[d as usize];
+            if node.is_leaf() {
+                indices[next_index as usize] = node.item;
+                nodes[slot as usize] = Node {
+                    bv: node.bv,
+                    first: next_index,
+                    count: 1,
+                };
+                next_index += 1;
+                continue;
+            }
+            let first = next_slot;
+            next_slot += 2;
+            nodes[slot as usize] = Node {
+                bv: node.bv,
+                first,
+                count: 0,
+            };
+            for entry in [(node.right, first + 1), (node.left, first)] {
+                *stack.get_mut(top).ok_or(Error::StackOverflow {
+                    depth: self.height(),
+                    capacity: MAX_DEPTH,
+                })? = entry;
+                top += 1;
+            }
+        }
+        Ok(Bvh::from_built(
+            &nodes[..needed],
+            &indices[..n],
+            self.height() as u32,
+        ))
+    }
+}
+
+/// Insertion construction as a builder: every primitive inserted in turn
+/// (optionally in a seeded shuffled order), then written in the query layout.
+///
+/// ```
+/// use bvhkit::build::{DynNode, Insertion};
+/// use bvhkit::{Aabb, Node, Triangle};
+/// use glam::Vec3;
+/// let tris: Vec<Triangle> = (0..50).map(|i| {
+///     let o = Vec3::new(i as f32, (i % 7) as f32, 0.0);
+///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+/// }).collect();
+/// let mut storage = vec![DynNode::<Aabb>::EMPTY; 99];
+/// let mut order = vec![0u32; 50];
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; 99];
+/// let mut idx = vec![0u32; 50];
+/// let bvh = Insertion::default().build(&tris, &mut storage, &mut order, &mut nodes, &mut idx)?;
+/// assert_eq!(bvh.primitive_count(), 50);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Insertion {
+    /// Tree options (margin is usually 0 for a static build).
+    pub config: DynamicConfig,
+    /// Insert in a shuffled order with this seed, or in the given order.
+    pub shuffle: Option<u64>,
+}
+
+impl Default for Insertion {
+    fn default() -> Self {
+        Insertion {
+            config: DynamicConfig::default(),
+            shuffle: Some(0x5eed),
+        }
+    }
+}
+
+impl Insertion {
+    /// Builds: `storage` needs `2n - 1` nodes, `order` `n` words, `nodes`
+    /// `2n - 1` and `indices` `n`.
+    pub fn build<'a, B: BoundingVolume, P: Primitive>(
+        &self,
+        prims: &[P],
+        storage: &mut [DynNode<B>],
+        order: &mut [u32],
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+    ) -> Result<Bvh<'a, B>, Error> {
+        validate(prims)?;
+        let n = prims.len();
+        if order.len() < n {
+            return Err(Error::IndexCapacity {
+                needed: n,
+                available: order.len(),
+            });
+        }
+        let needed = 2 * n - 1;
+        if storage.len() < needed {
+            return Err(Error::NodeCapacity {
+                needed,
+                available: storage.len(),
+            });
+        }
+        let order = &mut order[..n];
+        for (i, o) in order.iter_mut().enumerate() {
+            *o = i as u32;
+        }
+        if let Some(seed) = self.shuffle {
+            // Fisher–Yates with SplitMix64: reproducible for a given seed.
+            let mut state = seed;
+            for i in (1..n).rev() {
+                state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+                let mut z = state;
+                z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                z ^= z >> 31;
+                order.swap(i, (z % (i as u64 + 1)) as usize);
+            }
+        }
+        let mut tree = DynamicTree::new(&mut storage[..needed], self.config)?;
+        for &i in order.iter() {
+            tree.insert(i, &prims[i as usize].bounds())?;
+        }
+        tree.to_bvh(nodes, indices)
+    }
+}

@@ -1,0 +1,296 @@
+//! Insertion construction and the dynamic tree: random insert / remove /
+//! move sequences keep the invariants and the answers, for every volume type.
+
+use bvhkit::build::{DynNode, DynamicConfig, DynamicTree, Insertion, SiblingSearch};
+use bvhkit::glam::Vec3;
+use bvhkit::{
+    brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Node, Obb, Same, Sphere, TopDown,
+    Triangle,
+};
+use bvhkit_tests::*;
+use proptest::prelude::*;
+
+#[derive(Clone, Debug)]
+enum Op {
+    Insert(Vec3, Vec3),
+    Remove(usize),
+    Move(usize, Vec3),
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    let v = || {
+        (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    };
+    prop_oneof![
+        5 => (v(), (0.0f32..2.0, 0.0f32..2.0, 0.0f32..2.0)).prop_map(|(o, (x, y, z))| Op::Insert(o, Vec3::new(x, y, z))),
+        2 => (0usize..1000).prop_map(Op::Remove),
+        3 => (0usize..1000, v()).prop_map(|(i, d)| Op::Move(i, d * 0.1)),
+    ]
+}
+
+fn config() -> impl Strategy<Value = DynamicConfig> {
+    (
+        any::<bool>(),
+        any::<bool>(),
+        prop_oneof![Just(0.0f32), 0.0f32..1.0],
+    )
+        .prop_map(|(bb, rotations, margin)| DynamicConfig {
+            search: if bb {
+                SiblingSearch::BranchAndBound
+            } else {
+                SiblingSearch::Descent
+            },
+            rotations,
+            margin,
+        })
+}
+
+/// Runs the operations; after each, checks the live set, node count and
+/// (every few steps) the exported tree against brute force.
+fn run<B: BoundingVolume>(
+    cfg: DynamicConfig,
+    ops: &[Op],
+    other: &[Triangle],
+) -> Result<(), TestCaseError> {
+    let cap = 64;
+    let mut storage = vec![DynNode::<B>::EMPTY; 2 * cap - 1];
+    let mut tree = DynamicTree::new(&mut storage, cfg).unwrap();
+    // Live objects: (item, handle, bounds); items are unique ids.
+    let mut live: Vec<(u32, u32, Aabb)> = Vec::new();
+    let mut next_item = 0u32;
+    let (no, io, _) = build::<B, _>(&TopDown::default(), other).unwrap();
+    let t_other = open(&no, &io, other);
+    for (step, op) in ops.iter().enumerate() {
+        match op {
+            Op::Insert(o, e) => {
+                let b = Aabb::new(*o, *o + *e);
+                match tree.insert(next_item, &b) {
+                    Ok(h) => live.push((next_item, h, b)),
+                    Err(Error::NodeCapacity { .. }) => prop_assert_eq!(live.len(), cap),
+                    Err(Error::StackOverflow { .. }) => prop_assert!(!cfg.rotations),
+                    Err(e) => return Err(TestCaseError::fail(format!("insert: {e}"))),
+                }
+                next_item += 1;
+            }
+            Op::Remove(i) if !live.is_empty() => {
+                let (_, h, _) = live.swap_remove(i % live.len());
+                tree.remove(h).unwrap();
+            }
+            Op::Move(i, d) if !live.is_empty() => {
+                let k = i % live.len();
+                let b = Aabb::new(live[k].2.min + *d, live[k].2.max + *d);
+                match tree.update(live[k].1, &b) {
+                    Ok(_) => live[k].2 = b,
+                    Err(Error::StackOverflow { .. }) if !cfg.rotations => {
+                        live.swap_remove(k);
+                    }
+                    Err(e) => return Err(TestCaseError::fail(format!("update: {e}"))),
+                }
+            }
+            _ => {}
+        }
+        prop_assert_eq!(tree.len(), live.len());
+        if let Err(e) = tree.validate() {
+            return Err(TestCaseError::fail(format!("after {op:?}: {e}")));
+        }
+        if live.is_empty() || step % 4 != 3 {
+            continue;
+        }
+        // Export and compare with brute force over the live boxes, indexed by item.
+        let mut prims = vec![Aabb::new(Vec3::splat(1e6), Vec3::splat(1e6)); next_item as usize];
+        for &(item, _, b) in &live {
+            prims[item as usize] = b;
+        }
+        let n = live.len();
+        let mut nodes = vec![Node::<B>::EMPTY; 2 * n - 1];
+        let mut idx = vec![0u32; n];
+        let count = tree.to_bvh(&mut nodes, &mut idx).unwrap().node_count();
+        prop_assert_eq!(count, 2 * n - 1);
+        let mut items: Vec<u32> = idx.clone();
+        items.sort_unstable();
+        let mut want_items: Vec<u32> = live.iter().map(|l| l.0).collect();
+        want_items.sort_unstable();
+        prop_assert_eq!(&items, &want_items, "every live object exactly once");
+        // Renumber: leaf position k holds object idx[k], as primitive k.
+        let compact: Vec<Aabb> = idx.iter().map(|&i| prims[i as usize]).collect();
+        let renum: Vec<u32> = (0..n as u32).collect();
+        // `open` validates containment of every primitive and child.
+        let tree_view = open(&nodes, &renum, &compact);
+        let region = Aabb::new(Vec3::new(-3.0, -3.0, -3.0), Vec3::new(4.0, 2.0, 5.0));
+        let mut got = Vec::new();
+        tree_view
+            .overlapping(&compact, &region, |i| got.push(i))
+            .unwrap();
+        got.sort_unstable();
+        let mut want = Vec::new();
+        brute_force::overlapping(&compact, &region, |i| want.push(i));
+        prop_assert_eq!(got, want);
+        let mut got = Vec::new();
+        bvhkit::overlapping_pairs(
+            &tree_view,
+            &compact,
+            &t_other,
+            other,
+            bvhkit::Descent::Larger,
+            |i, j| got.push((i, j)),
+        )
+        .unwrap();
+        got.sort_unstable();
+        let mut want = Vec::new();
+        brute_force::pairs(&compact, other, |i, j| want.push((i, j)));
+        prop_assert_eq!(got, want);
+        let mut pairs = Vec::new();
+        bvhkit::overlapping_pairs(
+            &tree_view,
+            &compact,
+            &tree_view,
+            &compact,
+            bvhkit::Descent::Larger,
+            |i, j| pairs.push((i, j)),
+        )
+        .unwrap();
+        let mut want_pairs = Vec::new();
+        brute_force::pairs(&compact, &compact, |i, j| want_pairs.push((i, j)));
+        pairs.sort_unstable();
+        prop_assert_eq!(pairs, want_pairs);
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(proptest_config(48))]
+
+    #[test]
+    fn operation_sequences_keep_invariants_and_answers(cfg in config(), ops in prop::collection::vec(op(), 1..120), other in scene(20)) {
+        run::<Aabb>(cfg, &ops, &other)?;
+        run::<Sphere>(cfg, &ops, &other)?;
+        run::<Obb>(cfg, &ops, &other)?;
+        run::<Dop14>(cfg, &ops, &other)?;
+    }
+
+    #[test]
+    fn insertion_builds_match_brute_force(
+        cfg in config(), seed in prop_oneof![Just(None), any::<u64>().prop_map(Some)],
+        a in scene(40), b in scene(40),
+    ) {
+        let builder = Insertion { config: DynamicConfig { margin: 0.0, ..cfg }, shuffle: seed };
+        fn check<B: BoundingVolume>(builder: &Insertion, a: &[Triangle], b: &[Triangle]) -> Result<(), TestCaseError> {
+            let built = |p: &[Triangle]| {
+                let n = p.len();
+                let mut storage = vec![DynNode::<B>::EMPTY; 2 * n - 1];
+                let mut order = vec![0u32; n];
+                let mut nodes = vec![Node::<B>::EMPTY; 2 * n - 1];
+                let mut idx = vec![0u32; n];
+                builder.build(p, &mut storage, &mut order, &mut nodes, &mut idx).map(|t| t.depth()).map(|d| (nodes, idx, d))
+            };
+            let (na, ia, _) = match built(a) {
+                Ok(x) => x,
+                Err(Error::StackOverflow { .. }) if !builder.config.rotations => return Ok(()),
+                Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+            };
+            let (nb, ib, _) = match built(b) {
+                Ok(x) => x,
+                Err(Error::StackOverflow { .. }) if !builder.config.rotations => return Ok(()),
+                Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+            };
+            let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
+            check_pairs(&ta, a, &tb, b, &Same, Bounds, &TopDown::default())
+        }
+        check::<Aabb>(&builder, &a, &b)?;
+        check::<Sphere>(&builder, &a, &b)?;
+        check::<Dop14>(&builder, &a, &b)?;
+    }
+}
+
+/// Sorted, collinear input: without rotations the tree would get too deep;
+/// the insertion is refused with an error (and nothing is lost); with
+/// rotations the depth stays logarithmic.
+#[test]
+fn sorted_collinear_input_is_bounded_or_refused() {
+    let n = 3000;
+    let boxes: Vec<Aabb> = (0..n)
+        .map(|i| Aabb::from_point(Vec3::new(1.5f32.powi((i % 50) as i32) + i as f32, 0.0, 0.0)))
+        .collect();
+    for search in [SiblingSearch::Descent, SiblingSearch::BranchAndBound] {
+        let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
+        let mut tree = DynamicTree::new(
+            &mut storage,
+            DynamicConfig {
+                search,
+                rotations: true,
+                margin: 0.0,
+            },
+        )
+        .unwrap();
+        for (i, b) in boxes.iter().enumerate() {
+            tree.insert(i as u32, b).unwrap();
+        }
+        assert!(
+            tree.height() <= 2 * 12 + 2,
+            "{search:?}: height {}",
+            tree.height()
+        );
+        let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
+        let mut tree = DynamicTree::new(
+            &mut storage,
+            DynamicConfig {
+                search,
+                rotations: false,
+                margin: 0.0,
+            },
+        )
+        .unwrap();
+        let mut refused = 0;
+        for (i, b) in boxes.iter().enumerate() {
+            match tree.insert(i as u32, b) {
+                Ok(_) => {}
+                Err(Error::StackOverflow { depth, capacity }) => {
+                    assert!(depth > capacity);
+                    refused += 1;
+                }
+                Err(e) => panic!("{e}"),
+            }
+            assert!(tree.height() <= bvhkit::MAX_DEPTH);
+        }
+        assert_eq!(tree.len() + refused, n);
+    }
+}
+
+#[test]
+fn bad_handles_and_bounds_are_errors() {
+    let mut storage = vec![DynNode::<Aabb>::EMPTY; 5];
+    let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+    let h = tree.insert(0, &Aabb::new(Vec3::ZERO, Vec3::ONE)).unwrap();
+    assert!(tree.insert(1, &Aabb::new(Vec3::NAN, Vec3::ONE)).is_err());
+    assert!(tree.insert(1, &Aabb::new(Vec3::ONE, Vec3::ZERO)).is_err());
+    let h2 = tree
+        .insert(1, &Aabb::new(Vec3::ONE, Vec3::splat(2.0)))
+        .unwrap();
+    tree.insert(2, &Aabb::new(Vec3::ONE, Vec3::splat(3.0)))
+        .unwrap();
+    assert!(matches!(
+        tree.insert(3, &Aabb::new(Vec3::ONE, Vec3::splat(3.0))),
+        Err(Error::NodeCapacity { .. })
+    ));
+    assert!(tree.remove(99).is_err());
+    tree.remove(h).unwrap();
+    assert!(tree.remove(h).is_err(), "double removal");
+    assert!(
+        tree.update(h, &Aabb::new(Vec3::ZERO, Vec3::ONE)).is_err(),
+        "update after removal"
+    );
+    assert!(matches!(
+        tree.insert(7, &Aabb::new(Vec3::ZERO, Vec3::splat(1e33))),
+        Err(Error::CoordinateOutOfRange { primitive: 7 })
+    ));
+    tree.remove(h2).unwrap();
+    assert_eq!(tree.len(), 1);
+    assert!(DynamicTree::<Aabb>::new(
+        &mut [],
+        DynamicConfig {
+            margin: f32::NAN,
+            ..Default::default()
+        }
+    )
+    .is_err());
+}
