@@ -80,6 +80,27 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         })
     }
 
+    /// Builds by insertion (dynamic-tree storage allocated here and dropped).
+    pub fn build_by_insertion<P: Primitive>(
+        builder: &bvhkit::build::Insertion,
+        prims: &[P],
+    ) -> Result<Self, Error> {
+        use bvhkit::build::DynNode;
+        let n = prims.len();
+        let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n).max(1)];
+        let mut order = vec![0u32; n];
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n).max(1)];
+        let mut indices = vec![0u32; n];
+        let depth = builder
+            .build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?
+            .depth();
+        Ok(OwnedBvh {
+            nodes,
+            indices,
+            depth,
+        })
+    }
+
     /// The tree as the core's borrowed view.
     pub fn view(&self) -> Bvh<'_, B> {
         Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth)

@@ -3,6 +3,7 @@
 
 use crate::{median_time, scene, OwnedBvh};
 use bvhkit::build::PRESETS;
+use bvhkit::build::{DynamicConfig, InsertOrder, Insertion, SiblingSearch};
 use bvhkit::{
     overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Intersects, Obb,
     Primitive, Sphere, TopDown, Transform, Triangle,
@@ -118,6 +119,8 @@ pub enum Builder {
     TopDown(TopDown),
     /// A bottom-up configuration.
     BottomUp(bvhkit::build::BottomUp),
+    /// Insertion, one primitive at a time.
+    Insertion(bvhkit::build::Insertion),
 }
 
 impl Builder {
@@ -129,6 +132,7 @@ impl Builder {
         match self {
             Builder::TopDown(t) => OwnedBvh::build(t, prims),
             Builder::BottomUp(b) => OwnedBvh::build_bottom_up(b, prims),
+            Builder::Insertion(i) => OwnedBvh::build_by_insertion(i, prims),
         }
     }
 }
@@ -233,6 +237,45 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         let builder = Builder::BottomUp(bvhkit::build::BottomUp {
             method: bvhkit::build::Method::Ploc { radius },
             metric: bvhkit::build::MergeMetric::SurfaceArea,
+        });
+        strategies.push(measure_with::<Aabb>(
+            name, builder, &a, &b, &reference, opts.runs,
+        )?);
+    }
+    for (name, search, order) in [
+        (
+            "insert-bnb",
+            SiblingSearch::BranchAndBound,
+            InsertOrder::Shuffled(0x5eed),
+        ),
+        (
+            "insert-descent",
+            SiblingSearch::Descent,
+            InsertOrder::Shuffled(0x5eed),
+        ),
+        (
+            "insert-bnb-mesh",
+            SiblingSearch::BranchAndBound,
+            InsertOrder::Given,
+        ),
+        (
+            "insert-bnb-sorted",
+            SiblingSearch::BranchAndBound,
+            InsertOrder::Sorted,
+        ),
+        (
+            "insert-dsc-sorted",
+            SiblingSearch::Descent,
+            InsertOrder::Sorted,
+        ),
+    ] {
+        progress(name);
+        let builder = Builder::Insertion(Insertion {
+            config: DynamicConfig {
+                search,
+                ..DynamicConfig::default()
+            },
+            order,
         });
         strategies.push(measure_with::<Aabb>(
             name, builder, &a, &b, &reference, opts.runs,
@@ -357,7 +400,9 @@ pub fn render(r: &TourReport) -> String {
         r.scene.reference_ms
     );
     s += &table(
-        "Builders (AABB trees; top-down presets, then bottom-up PLOC with search radius r; A-vs-B query, descend the larger volume):",
+        "Builders (AABB trees; top-down presets; bottom-up PLOC with search radius r; insertion with\n\
+         branch-and-bound (bnb) or descent (dsc) sibling search, shuffled, in mesh order or sorted;\n\
+         A-vs-B query, descend the larger volume):",
         &r.strategies,
     );
     s += &table(

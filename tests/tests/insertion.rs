@@ -1,7 +1,9 @@
 //! Insertion construction and the dynamic tree: random insert / remove /
 //! move sequences keep the invariants and the answers, for every volume type.
 
-use bvhkit::build::{DynNode, DynamicConfig, DynamicTree, Insertion, SiblingSearch};
+use bvhkit::build::{
+    DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch,
+};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Node, Obb, Same, Sphere, TopDown,
@@ -31,7 +33,11 @@ fn op() -> impl Strategy<Value = Op> {
 fn config() -> impl Strategy<Value = DynamicConfig> {
     (
         any::<bool>(),
-        any::<bool>(),
+        prop_oneof![
+            Just(Rotations::Off),
+            Just(Rotations::Always),
+            (0u32..6).prop_map(Rotations::AboveHeight)
+        ],
         prop_oneof![Just(0.0f32), 0.0f32..1.0],
     )
         .prop_map(|(bb, rotations, margin)| DynamicConfig {
@@ -67,7 +73,9 @@ fn run<B: BoundingVolume>(
                 match tree.insert(next_item, &b) {
                     Ok(h) => live.push((next_item, h, b)),
                     Err(Error::NodeCapacity { .. }) => prop_assert_eq!(live.len(), cap),
-                    Err(Error::StackOverflow { .. }) => prop_assert!(!cfg.rotations),
+                    Err(Error::StackOverflow { .. }) => {
+                        prop_assert!(cfg.rotations == Rotations::Off)
+                    }
                     Err(e) => return Err(TestCaseError::fail(format!("insert: {e}"))),
                 }
                 next_item += 1;
@@ -81,7 +89,7 @@ fn run<B: BoundingVolume>(
                 let b = Aabb::new(live[k].2.min + *d, live[k].2.max + *d);
                 match tree.update(live[k].1, &b) {
                     Ok(_) => live[k].2 = b,
-                    Err(Error::StackOverflow { .. }) if !cfg.rotations => {
+                    Err(Error::StackOverflow { .. }) if cfg.rotations == Rotations::Off => {
                         live.swap_remove(k);
                     }
                     Err(e) => return Err(TestCaseError::fail(format!("update: {e}"))),
@@ -170,10 +178,10 @@ proptest! {
 
     #[test]
     fn insertion_builds_match_brute_force(
-        cfg in config(), seed in prop_oneof![Just(None), any::<u64>().prop_map(Some)],
+        cfg in config(), order in prop_oneof![Just(InsertOrder::Given), Just(InsertOrder::Sorted), any::<u64>().prop_map(InsertOrder::Shuffled)],
         a in scene(40), b in scene(40),
     ) {
-        let builder = Insertion { config: DynamicConfig { margin: 0.0, ..cfg }, shuffle: seed };
+        let builder = Insertion { config: DynamicConfig { margin: 0.0, ..cfg }, order };
         fn check<B: BoundingVolume>(builder: &Insertion, a: &[Triangle], b: &[Triangle]) -> Result<(), TestCaseError> {
             let built = |p: &[Triangle]| {
                 let n = p.len();
@@ -185,12 +193,12 @@ proptest! {
             };
             let (na, ia, _) = match built(a) {
                 Ok(x) => x,
-                Err(Error::StackOverflow { .. }) if !builder.config.rotations => return Ok(()),
+                Err(Error::StackOverflow { .. }) if builder.config.rotations == Rotations::Off => return Ok(()),
                 Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
             };
             let (nb, ib, _) = match built(b) {
                 Ok(x) => x,
-                Err(Error::StackOverflow { .. }) if !builder.config.rotations => return Ok(()),
+                Err(Error::StackOverflow { .. }) if builder.config.rotations == Rotations::Off => return Ok(()),
                 Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
             };
             let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
@@ -212,30 +220,33 @@ fn sorted_collinear_input_is_bounded_or_refused() {
         .map(|i| Aabb::from_point(Vec3::new(1.5f32.powi((i % 50) as i32) + i as f32, 0.0, 0.0)))
         .collect();
     for search in [SiblingSearch::Descent, SiblingSearch::BranchAndBound] {
-        let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
-        let mut tree = DynamicTree::new(
-            &mut storage,
-            DynamicConfig {
-                search,
-                rotations: true,
-                margin: 0.0,
-            },
-        )
-        .unwrap();
-        for (i, b) in boxes.iter().enumerate() {
-            tree.insert(i as u32, b).unwrap();
+        for rotations in [Rotations::Always, Rotations::AboveHeight(24)] {
+            let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
+            let mut tree = DynamicTree::new(
+                &mut storage,
+                DynamicConfig {
+                    search,
+                    rotations,
+                    margin: 0.0,
+                },
+            )
+            .unwrap();
+            for (i, b) in boxes.iter().enumerate() {
+                tree.insert(i as u32, b).unwrap();
+            }
+            assert!(
+                tree.height() <= 40,
+                "{search:?} {rotations:?}: height {}",
+                tree.height()
+            );
+            tree.validate().unwrap();
         }
-        assert!(
-            tree.height() <= 2 * 12 + 2,
-            "{search:?}: height {}",
-            tree.height()
-        );
         let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
         let mut tree = DynamicTree::new(
             &mut storage,
             DynamicConfig {
                 search,
-                rotations: false,
+                rotations: Rotations::Off,
                 margin: 0.0,
             },
         )

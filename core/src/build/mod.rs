@@ -14,7 +14,9 @@ mod strategy;
 mod top_down;
 
 pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
-pub use dynamic::{DynNode, DynamicConfig, DynamicTree, Insertion, SiblingSearch, NULL};
+pub use dynamic::{
+    DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch, NULL,
+};
 pub use presets::{Preset, PRESETS};
 pub use refit::{refit_all, Refit};
 
