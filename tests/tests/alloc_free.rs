@@ -5,12 +5,16 @@
 //! (Inside the normal test harness other threads allocate, so a global counter
 //! would be unreliable there.)
 
-use bvhkit::build::{refit_all, BottomUp, BottomUpScratch, Cluster, MergeMetric, Refit};
+use bvhkit::build::{
+    refit_all, BottomUp, BottomUpScratch, Cluster, DynNode, DynamicConfig, DynamicTree,
+    InsertOrder, Insertion, MergeMetric, Refit, SiblingSearch,
+};
 use bvhkit::collision::{collide, BroadPhase, Object};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::{
     overlapping_pairs, Aabb, BoundingVolume, Bvh, Collector, Counts, DepthSwitch, Descent, Dop14,
-    Dop26, Node, Obb, Order, PairTraversal, Pairs, Ray, RayOrder, Rigid, Sphere, TopDown, Triangle,
+    Dop26, Node, Obb, Order, PairTraversal, Pairs, Primitive, Ray, RayOrder, Rigid, Sphere,
+    TopDown, Triangle,
 };
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -140,6 +144,45 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         if allocs != 0 {
             failures.push(format!(
                 "{} {name}: refit allocated {allocs} times",
+                B::NAME
+            ));
+        }
+        // Insertion builds and dynamic-tree operations.
+        let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut order = vec![0u32; a.len()];
+        let mut ins_nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut ins_idx = vec![0u32; a.len()];
+        let (_, allocs) = count(|| {
+            for search in [SiblingSearch::Descent, SiblingSearch::BranchAndBound] {
+                let builder = Insertion {
+                    config: DynamicConfig {
+                        search,
+                        ..DynamicConfig::default()
+                    },
+                    order: InsertOrder::Sorted,
+                };
+                builder
+                    .build(&a, &mut storage, &mut order, &mut ins_nodes, &mut ins_idx)
+                    .unwrap();
+            }
+            let mut tree = DynamicTree::new(
+                &mut storage,
+                DynamicConfig {
+                    margin: 0.1,
+                    ..DynamicConfig::default()
+                },
+            )
+            .unwrap();
+            let handles: [u32; 3] =
+                core::array::from_fn(|i| tree.insert(i as u32, &a[i].bounds()).unwrap());
+            tree.update(handles[1], &a[40].bounds()).unwrap();
+            tree.remove(handles[0]).unwrap();
+            tree.validate().unwrap();
+            tree.to_bvh(&mut ins_nodes, &mut ins_idx).unwrap();
+        });
+        if allocs != 0 {
+            failures.push(format!(
+                "{} {name}: insertion or dynamic-tree operations allocated {allocs} times",
                 B::NAME
             ));
         }
