@@ -86,4 +86,11 @@ pub trait Exercises {
     /// becomes the union of its primitives' boxes, every internal box the
     /// union of its two children. Children are stored after their parent.
     fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]);
+
+    /// Exercise 10: the Goldsmith–Salmon cost of inserting a new object with
+    /// box `new` next to the node with box `sibling`, whose ancestors (parent
+    /// first, root last) have boxes `ancestors`: the surface area of the new
+    /// parent joining `sibling` and `new`, plus how much each ancestor's
+    /// surface area grows when it must also contain `new`.
+    fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64;
 }

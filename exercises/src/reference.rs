@@ -153,4 +153,13 @@ impl Exercises for Reference {
             panic!("the reference refit failed: {e}");
         }
     }
+
+    fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64 {
+        let area = |b: &Aabb| b.surface_area() as f64;
+        area(&sibling.union(new))
+            + ancestors
+                .iter()
+                .map(|a| area(&a.union(new)) - area(a))
+                .sum::<f64>()
+    }
 }

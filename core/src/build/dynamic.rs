@@ -150,6 +150,19 @@ fn area<B: BoundingVolume>(b: &B) -> f64 {
     b.surface_area() as f64
 }
 
+/// The Goldsmith–Salmon cost of `sibling` for a new leaf `bv`: the new
+/// parent's area plus the growth of every ancestor.
+fn cost_in<B: BoundingVolume>(nodes: &[DynNode<B>], sibling: u32, bv: &B) -> f64 {
+    let mut cost = area(&nodes[sibling as usize].bv.merge(bv));
+    let mut a = nodes[sibling as usize].parent;
+    while a != NULL {
+        let node = &nodes[a as usize].bv;
+        cost += area(&node.merge(bv)) - area(node);
+        a = nodes[a as usize].parent;
+    }
+    cost
+}
+
 /// A volume containing both, as tight as `merge` makes it.
 fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
     let mut pick = l.merge(r);
@@ -346,14 +359,14 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// The cost of making `sibling` the sibling of a new leaf with volume
     /// `bv`: the new parent's area plus the growth of every ancestor.
     pub fn insertion_cost(&self, sibling: u32, bv: &B) -> f64 {
-        let mut cost = area(&self.nodes[sibling as usize].bv.merge(bv));
-        let mut a = self.nodes[sibling as usize].parent;
-        while a != NULL {
-            let node = &self.nodes[a as usize].bv;
-            cost += area(&node.merge(bv)) - area(node);
-            a = self.nodes[a as usize].parent;
-        }
-        cost
+        cost_in(self.nodes, sibling, bv)
+    }
+
+    /// [`insertion_cost`](Self::insertion_cost) on storage that is not
+    /// borrowed by a live tree (for tools and exercises): `sibling` is a node
+    /// index of `storage`, `new` the object's box.
+    pub fn insertion_cost_of(storage: &[DynNode<B>], sibling: u32, new: &Aabb) -> f64 {
+        cost_in(storage, sibling, &B::from_aabb(new))
     }
 
     fn best_sibling(&self, bv: &B) -> u32 {
