@@ -47,6 +47,65 @@ pub fn default_pair() -> (Vec<Triangle>, Vec<Triangle>) {
     (a, b)
 }
 
+/// A small deterministic generator (SplitMix64) for the generated scenes.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn vec(&mut self) -> Vec3 {
+        Vec3::new(self.next(), self.next(), self.next()) * 2.0 - Vec3::ONE
+    }
+}
+
+/// `n` small triangles spread uniformly in the cube [-1, 1]^3 (a "soup").
+pub fn soup(n: usize, seed: u64) -> Vec<Triangle> {
+    let mut r = Rng(seed);
+    let size = 1.0 / (n as f32).cbrt();
+    (0..n)
+        .map(|_| {
+            let a = r.vec();
+            Triangle::new(a, a + r.vec() * size, a + r.vec() * size)
+        })
+        .collect()
+}
+
+/// `n` small triangles in 24 tight clusters of different sizes (very uneven density).
+pub fn clustered(n: usize, seed: u64) -> Vec<Triangle> {
+    let mut r = Rng(seed);
+    let centres: Vec<(Vec3, f32)> = (0..24)
+        .map(|i| (r.vec(), 0.02 + 0.1 * (i % 5) as f32 / 4.0))
+        .collect();
+    (0..n)
+        .map(|i| {
+            let (c, spread) = centres[i % centres.len()];
+            // Sum of three uniforms: roughly normal around the centre.
+            let a = c + (r.vec() + r.vec() + r.vec()) * spread / 3.0;
+            let size = spread * 0.1;
+            Triangle::new(a, a + r.vec() * size, a + r.vec() * size)
+        })
+        .collect()
+}
+
+/// `n` long, thin triangles (blades of grass or hair): length 0.08, width
+/// 0.002, leaning in random directions, rooted over the square [-1, 1]^2.
+pub fn slivers(n: usize, seed: u64) -> Vec<Triangle> {
+    let mut r = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let root = Vec3::new(r.vec().x, 0.0, r.vec().z);
+            let dir = (Vec3::Y + r.vec() * 0.6).normalize() * 0.08;
+            let side = Vec3::new(0.002, 0.0, 0.0);
+            Triangle::new(root, root + side, root + dir)
+        })
+        .collect()
+}
+
 fn icosphere(subdivisions: u32) -> (Vec<Vec3>, Vec<[usize; 3]>) {
     let t = (1.0 + 5.0f32.sqrt()) / 2.0;
     let mut v: Vec<Vec3> = [

@@ -30,6 +30,8 @@ pub struct TourReport {
     pub descent_rules: Vec<crate::cost::CostRow>,
     /// Moving objects: a twisting rock, refitted versus rebuilt each frame.
     pub motion: Vec<crate::motion::MotionRow>,
+    /// The main builders on other kinds of generated scenes.
+    pub other_scenes: Vec<(String, Vec<Row>)>,
     /// Queries whose answer equalled the brute-force reference.
     pub verified: usize,
     /// Queries run.
@@ -201,6 +203,39 @@ impl Default for TourOptions {
     }
 }
 
+/// The builders compared on every generated scene kind.
+fn scene_builders() -> [(&'static str, Builder); 6] {
+    let insertion = |search, order| {
+        Builder::Insertion(Insertion {
+            config: DynamicConfig {
+                search,
+                ..DynamicConfig::default()
+            },
+            order,
+        })
+    };
+    [
+        ("sah", Builder::TopDown(TopDown::sah())),
+        ("median", Builder::TopDown(TopDown::median())),
+        (
+            "ploc-r16",
+            Builder::BottomUp(bvhkit::build::BottomUp::default()),
+        ),
+        (
+            "insert-bnb",
+            insertion(SiblingSearch::BranchAndBound, InsertOrder::Shuffled(0x5eed)),
+        ),
+        (
+            "insert-descent",
+            insertion(SiblingSearch::Descent, InsertOrder::Shuffled(0x5eed)),
+        ),
+        (
+            "insert-bnb-sorted",
+            insertion(SiblingSearch::BranchAndBound, InsertOrder::Sorted),
+        ),
+    ]
+}
+
 type CostReport =
     fn(
         &[Triangle],
@@ -321,9 +356,37 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         calibration.push(cal);
         descent_rules.extend(rows);
     }
+    let mut other_scenes = Vec::new();
+    let n_other = 20 * 4usize.pow(opts.subdivisions.min(5));
+    for (name, make) in [
+        ("soup", scene::soup as fn(usize, u64) -> Vec<Triangle>),
+        ("clustered", scene::clustered),
+        ("slivers", scene::slivers),
+    ] {
+        progress(name);
+        let sa = make(n_other, 11);
+        let sb: Vec<Triangle> = sa
+            .iter()
+            .map(|t| t.translated(bvhkit::glam::Vec3::new(0.004, 0.003, 0.002)))
+            .collect();
+        let reference = reference_pairs(&sa, &sb);
+        let mut rows = Vec::new();
+        for (label, builder) in scene_builders() {
+            rows.push(measure_with::<Aabb>(
+                label, builder, &sa, &sb, &reference, opts.runs,
+            )?);
+        }
+        other_scenes.push((
+            format!("{name}: {n_other} triangles and a copy shifted by 0.005"),
+            rows,
+        ));
+    }
     progress("refit versus rebuild");
     let motion = crate::motion::refit_vs_rebuild(opts.subdivisions, 8, 0.15, opts.runs)?;
-    let rows = strategies.iter().chain(&volumes);
+    let rows = strategies
+        .iter()
+        .chain(&volumes)
+        .chain(other_scenes.iter().flat_map(|(_, r)| r));
     let queries = rows.clone().count() + descent_rules.len() + motion.len();
     let verified = rows.filter(|r| r.matches).count()
         + descent_rules
@@ -352,6 +415,7 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         calibration,
         descent_rules,
         motion,
+        other_scenes,
         verified,
         queries,
     })
@@ -454,6 +518,9 @@ pub fn render(r: &TourReport) -> String {
                 "NO"
             }
         );
+    }
+    for (name, rows) in &r.other_scenes {
+        s += &table(&format!("Builders on another scene kind ({name}):"), rows);
     }
     s += "\nMoving objects: a rock twisting a little more each frame, its frame-0 tree refitted\n\
           versus a tree rebuilt each frame (SAH cost, times, and the pair query against a static rock;\n\
