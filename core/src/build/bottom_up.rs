@@ -17,7 +17,7 @@
 
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
-use crate::tree::{Bvh, Node, MAX_DEPTH};
+use crate::tree::{Bvh, Node};
 use crate::Error;
 
 /// What "smallest merged volume" measures.
@@ -195,7 +195,15 @@ impl BottomUp {
                 self.metric,
             ),
         };
-        let depth = emit(clusters, root, n, nodes, indices)?;
+        let depth = super::emit_layout(root, nodes, indices, |c| {
+            let cl = &clusters[c as usize];
+            let kind = if cl.left == cl.right {
+                Err(cl.left)
+            } else {
+                Ok((cl.left, cl.right))
+            };
+            (cl.bv, kind)
+        })?;
         Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth))
     }
 }
@@ -362,59 +370,4 @@ fn morton3(x: u32, y: u32, z: u32) -> u32 {
         (v | (v << 2)) & 0x09249249
     }
     spread(x) | (spread(y) << 1) | (spread(z) << 2)
-}
-
-/// Writes the cluster tree as nodes (children adjacent, depth-first) and
-/// indices; returns the depth.
-fn emit<B: BoundingVolume>(
-    clusters: &[Cluster<B>],
-    root: u32,
-    n: usize,
-    nodes: &mut [Node<B>],
-    indices: &mut [u32],
-) -> Result<u32, Error> {
-    let too_deep = |depth: u32| Error::StackOverflow {
-        depth: depth as usize,
-        capacity: MAX_DEPTH,
-    };
-    let (mut next_slot, mut next_index, mut max_depth) = (1u32, 0u32, 0u32);
-    // (cluster, node slot, depth); one waiting sibling per level.
-    let mut stack = [(0u32, 0u32, 0u32); MAX_DEPTH + 2];
-    stack[0] = (root, 0, 0);
-    let mut top = 1;
-    while top > 0 {
-        top -= 1;
-        let (c, slot, depth) = stack[top];
-        if depth as usize > MAX_DEPTH {
-            return Err(too_deep(depth));
-        }
-        max_depth = max_depth.max(depth);
-        let cl = &clusters[c as usize];
-        if cl.left == cl.right {
-            indices[next_index as usize] = cl.left;
-            nodes[slot as usize] = Node {
-                bv: cl.bv,
-                first: next_index,
-                count: 1,
-            };
-            next_index += 1;
-            continue;
-        }
-        let first = next_slot;
-        next_slot += 2;
-        nodes[slot as usize] = Node {
-            bv: cl.bv,
-            first,
-            count: 0,
-        };
-        for entry in [
-            (cl.right, first + 1, depth + 1),
-            (cl.left, first, depth + 1),
-        ] {
-            *stack.get_mut(top).ok_or(too_deep(depth + 1))? = entry;
-            top += 1;
-        }
-    }
-    debug_assert_eq!(next_index as usize, n);
-    Ok(max_depth)
 }

@@ -20,6 +20,7 @@
 //! objects); [`DynamicTree::to_bvh`] writes the tree in the layout every query
 //! of this crate runs on.
 
+use super::enclose;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node, MAX_DEPTH};
@@ -161,18 +162,6 @@ fn cost_in<B: BoundingVolume>(nodes: &[DynNode<B>], sibling: u32, bv: &B) -> f64
         a = nodes[a as usize].parent;
     }
     cost
-}
-
-/// A volume containing both, as tight as `merge` makes it.
-fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
-    let mut pick = l.merge(r);
-    for _ in 0..4 {
-        if pick.contains(l) && pick.contains(r) {
-            break;
-        }
-        pick = pick.merge(l).merge(r);
-    }
-    pick
 }
 
 impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
@@ -663,44 +652,16 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
                 available: indices.len(),
             });
         }
-        let (mut next_slot, mut next_index) = (1u32, 0u32);
-        let mut stack = [(NULL, 0u32); MAX_DEPTH + 2];
-        stack[0] = (self.root, 0);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (d, slot) = stack[top];
+        let depth = super::emit_layout(self.root, nodes, indices, |d| {
             let node = &self.nodes[d as usize];
-            if node.is_leaf() {
-                indices[next_index as usize] = node.item;
-                nodes[slot as usize] = Node {
-                    bv: node.bv,
-                    first: next_index,
-                    count: 1,
-                };
-                next_index += 1;
-                continue;
-            }
-            let first = next_slot;
-            next_slot += 2;
-            nodes[slot as usize] = Node {
-                bv: node.bv,
-                first,
-                count: 0,
+            let kind = if node.is_leaf() {
+                Err(node.item)
+            } else {
+                Ok((node.left, node.right))
             };
-            for entry in [(node.right, first + 1), (node.left, first)] {
-                *stack.get_mut(top).ok_or(Error::StackOverflow {
-                    depth: self.height(),
-                    capacity: MAX_DEPTH,
-                })? = entry;
-                top += 1;
-            }
-        }
-        Ok(Bvh::from_built(
-            &nodes[..needed],
-            &indices[..n],
-            self.height() as u32,
-        ))
+            (node.bv, kind)
+        })?;
+        Ok(Bvh::from_built(&nodes[..needed], &indices[..n], depth))
     }
 }
 

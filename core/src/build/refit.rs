@@ -16,6 +16,7 @@
 //! quality decays as the motion grows; `bvhkit-std` measures when a rebuild
 //! pays off.
 
+use super::enclose;
 use crate::bv::{Aabb, BoundingVolume, BoxSet};
 use crate::primitive::Primitive;
 use crate::query::Tally;
@@ -62,19 +63,6 @@ fn fit_leaf<B: BoundingVolume, P: Primitive>(prims: &[P], items: &[u32], margin:
         union = union.union(&boxes.aabb(i));
     }
     B::fit_boxes(&boxes, &union)
-}
-
-/// A volume containing both children, as tight as `merge` makes it.
-fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
-    let mut pick = l.merge(r);
-    // A rounding step may leave a hair outside; merging again only grows.
-    for _ in 0..4 {
-        if pick.contains(l) && pick.contains(r) {
-            break;
-        }
-        pick = pick.merge(l).merge(r);
-    }
-    pick
 }
 
 /// Checks that children follow their parents in the array (true for every
