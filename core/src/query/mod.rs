@@ -18,6 +18,7 @@ mod nearest;
 mod pair;
 mod ray;
 mod single;
+mod stack;
 mod tally;
 
 pub use collect::Collector;

@@ -6,6 +6,7 @@
 //! above `f64` rounding, exceeds the best distance so far.
 
 use super::heap::{MinHeap, BEST_FIRST_QUEUE};
+use super::stack::Stack;
 use super::Tally;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
@@ -244,12 +245,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
     ) -> Result<(), Error> {
         let nodes = self.nodes();
         let p = point.as_dvec3();
-        let mut stack = [0u32; MAX_DEPTH + 1];
-        stack[0] = root;
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = stack[top];
+        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(root, self.depth());
+        while let Some(n) = stack.pop() {
             tally.bv_tests(1);
             if best.is_some_and(|b| lower_bound(&nodes[n as usize].bv, p) > b.distance_squared) {
                 continue;
@@ -257,13 +254,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
             match nodes[n as usize].children() {
                 None => self.nearest_in_leaf(prims, point, n, best, tally),
                 Some((l, r)) => {
-                    for c in [r, l] {
-                        *stack.get_mut(top).ok_or(Error::StackOverflow {
-                            depth: self.depth(),
-                            capacity: MAX_DEPTH + 1,
-                        })? = c;
-                        top += 1;
-                    }
+                    stack.push(r)?;
+                    stack.push(l)?;
                 }
             }
         }

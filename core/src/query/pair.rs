@@ -11,6 +11,7 @@
 //! | what to return | method | [`Pairs::for_each`], [`Pairs::first`], [`Pairs::count`] |
 //! | count the work | [`Tally`] | `()` (free), [`Counts`](super::Counts) |
 
+use super::stack::Stack;
 use super::{Decision, Descent, DescentRule, Open, Tally};
 use crate::bv::BoundingVolume;
 use crate::narrow::Intersects;
@@ -666,38 +667,27 @@ where
     /// Leaf-directed: depth-first over A pruned by B's root; at each leaf of
     /// A, a single-tree descent of B with that leaf's volume.
     fn leaf_directed(&mut self) -> Result<Flow, Error> {
-        let overflow = Error::StackOverflow {
-            depth: self.a.depth().max(self.b.depth()),
-            capacity: MAX_DEPTH + 1,
-        };
-        let mut sa = [0u32; MAX_DEPTH + 1];
-        let mut sb = [0u32; MAX_DEPTH + 1];
-        let (mut ta, rb) = (0, self.b_bv(0));
+        let depth = self.a.depth().max(self.b.depth());
+        let rb = self.b_bv(0);
         let xa = self.na(0).bv;
-        if self.test(&xa, &rb) {
-            sa[0] = 0;
-            ta = 1;
+        if !self.test(&xa, &rb) {
+            return Ok(ControlFlow::Continue(()));
         }
-        while ta > 0 {
-            ta -= 1;
-            let i = sa[ta];
+        let mut sa = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, depth);
+        while let Some(i) = sa.pop() {
             if let Some((l, r)) = self.na(i).children() {
                 for c in [r, l] {
                     let cb = self.na(c).bv;
                     if self.test(&cb, &rb) {
-                        *sa.get_mut(ta).ok_or(overflow)? = c;
-                        ta += 1;
+                        sa.push(c)?;
                     }
                 }
                 continue;
             }
             // A leaf of A that overlaps B's root: descend B with its volume.
             let xb = self.na(i).bv;
-            sb[0] = 0;
-            let mut tb = 1;
-            while tb > 0 {
-                tb -= 1;
-                let j = sb[tb];
+            let mut sb = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, depth);
+            while let Some(j) = sb.pop() {
                 match self.nb(j).children() {
                     None => {
                         if self.leaves(i, j).is_break() {
@@ -708,8 +698,7 @@ where
                         for c in [r, l] {
                             let cb = self.b_bv(c);
                             if self.test(&xb, &cb) {
-                                *sb.get_mut(tb).ok_or(overflow)? = c;
-                                tb += 1;
+                                sb.push(c)?;
                             }
                         }
                     }

@@ -8,6 +8,7 @@
 //! without dividing by zero.
 
 use super::heap::{MinHeap, BEST_FIRST_QUEUE};
+use super::stack::Stack;
 use super::Tally;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
@@ -246,12 +247,9 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
         match order {
             RayOrder::DepthFirst => {
-                let mut stack = [(0u32, 0f32); MAX_DEPTH + 1];
-                stack[0] = (0, t_root);
-                let mut top = 1;
-                while top > 0 {
-                    top -= 1;
-                    let (n, t) = stack[top];
+                let mut stack =
+                    Stack::<(u32, f32), { MAX_DEPTH + 1 }>::with((0, t_root), self.depth());
+                while let Some((n, t)) = stack.pop() {
                     if beaten(t, &best) {
                         continue;
                     }
@@ -268,11 +266,7 @@ impl<B: BoundingVolume> Bvh<'_, B> {
                             }
                             for (c, tc) in kids {
                                 if let Some(tc) = tc {
-                                    *stack.get_mut(top).ok_or(Error::StackOverflow {
-                                        depth: self.depth(),
-                                        capacity: MAX_DEPTH + 1,
-                                    })? = (c, tc);
-                                    top += 1;
+                                    stack.push((c, tc))?;
                                 }
                             }
                         }
@@ -321,12 +315,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         tally: &mut impl Tally,
     ) -> Result<Option<Hit>, Error> {
         let nodes = self.nodes();
-        let mut stack = [0u32; MAX_DEPTH + 1];
-        stack[0] = root;
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = stack[top];
+        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(root, self.depth());
+        while let Some(n) = stack.pop() {
             tally.bv_tests(1);
             match slab(&nodes[n as usize].bv.aabb(), ray, inv) {
                 Some(t) if !best.is_some_and(|b| t > b.t) => {}
@@ -346,13 +336,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
                     }
                 }
                 Some((l, r)) => {
-                    for c in [r, l] {
-                        *stack.get_mut(top).ok_or(Error::StackOverflow {
-                            depth: self.depth(),
-                            capacity: MAX_DEPTH + 1,
-                        })? = c;
-                        top += 1;
-                    }
+                    stack.push(r)?;
+                    stack.push(l)?;
                 }
             }
         }
@@ -370,11 +355,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         self.check_query(prims.len())?;
         let inv = ray.dir.recip();
         let nodes = self.nodes();
-        let mut stack = [0u32; MAX_DEPTH + 1];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = stack[top];
+        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, self.depth());
+        while let Some(n) = stack.pop() {
             tally.bv_tests(1);
             if slab(&nodes[n as usize].bv.aabb(), ray, inv).is_none() {
                 continue;
@@ -389,13 +371,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
                     }
                 }
                 Some((l, r)) => {
-                    for c in [r, l] {
-                        *stack.get_mut(top).ok_or(Error::StackOverflow {
-                            depth: self.depth(),
-                            capacity: MAX_DEPTH + 1,
-                        })? = c;
-                        top += 1;
-                    }
+                    stack.push(r)?;
+                    stack.push(l)?;
                 }
             }
         }

@@ -1,0 +1,59 @@
+//! The fixed-capacity stack every depth-first traversal uses.
+
+use crate::Error;
+
+/// A stack on an array of `N` entries. A push beyond `N` is an
+/// [`Error::StackOverflow`] naming the tree's depth, never a panic.
+#[derive(Debug)]
+pub(crate) struct Stack<T, const N: usize> {
+    items: [T; N],
+    len: usize,
+    depth: usize,
+}
+
+impl<T: Copy, const N: usize> Stack<T, N> {
+    /// A stack holding `first`, for a tree of `depth` (reported on overflow).
+    pub(crate) fn with(first: T, depth: usize) -> Self {
+        Stack {
+            items: [first; N],
+            len: 1,
+            depth,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn push(&mut self, item: T) -> Result<(), Error> {
+        let slot = self.items.get_mut(self.len).ok_or(Error::StackOverflow {
+            depth: self.depth,
+            capacity: N,
+        })?;
+        *slot = item;
+        self.len += 1;
+        Ok(())
+    }
+
+    #[inline]
+    pub(crate) fn pop(&mut self) -> Option<T> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overflow_is_an_error_and_order_is_last_in_first_out() {
+        let mut s = Stack::<u32, 2>::with(1, 7);
+        s.push(2).unwrap();
+        assert_eq!(
+            s.push(3),
+            Err(Error::StackOverflow {
+                depth: 7,
+                capacity: 2
+            })
+        );
+        assert_eq!((s.pop(), s.pop(), s.pop()), (Some(2), Some(1), None));
+    }
+}
