@@ -143,7 +143,7 @@ where
     D: DescentRule + Copy,
 {
     for o in objects {
-        o.tree.check_query(o.prims.len())?;
+        crate::tree::hierarchy::check_query(o.tree, o.prims.len())?;
     }
     let mut found = 0;
     let mut failure = None;

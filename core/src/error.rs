@@ -69,6 +69,24 @@ pub enum Error {
         /// Length of the slice given to the query.
         given: usize,
     },
+    /// A value does not fit the field a compact layout stores it in (a 16-bit
+    /// offset, an 8-bit leaf size): the tree is refused, never wrapped around.
+    FieldOverflow {
+        /// Which field.
+        field: &'static str,
+        /// The value that had to be stored.
+        value: usize,
+        /// The largest value the field holds.
+        max: usize,
+    },
+    /// A tree is too unbalanced for the implicit array layout: it would need
+    /// `slots` array entries for `nodes` nodes.
+    SparseTree {
+        /// Array entries a complete tree of this depth needs.
+        slots: usize,
+        /// Nodes the tree really has.
+        nodes: usize,
+    },
     /// A builder option is out of its documented range.
     InvalidConfig(&'static str),
     /// A tree failed a structural check (see [`Bvh::validate`](crate::Bvh::validate)).
@@ -113,6 +131,15 @@ impl fmt::Display for Error {
             Error::PrimitiveCountMismatch { tree, given } => write!(
                 f,
                 "tree was built over {tree} primitives but {given} were given"
+            ),
+            Error::FieldOverflow { field, value, max } => write!(
+                f,
+                "{field} is {value}, more than the layout's field holds ({max})"
+            ),
+            Error::SparseTree { slots, nodes } => write!(
+                f,
+                "the implicit array would need {slots} slots for {nodes} nodes; \
+                 the tree is too unbalanced for it"
             ),
             Error::InvalidConfig(what) => write!(f, "invalid configuration: {what}"),
             Error::InvalidTree(what) => write!(f, "invalid tree: {what}"),

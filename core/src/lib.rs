@@ -44,6 +44,7 @@ pub mod build;
 pub mod bv;
 pub mod collision;
 mod error;
+pub mod layout;
 pub mod narrow;
 mod primitive;
 pub mod query;
@@ -62,10 +63,10 @@ pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{
     brute_force, overlapping_pairs, Answer, Bounds, Collector, CostModel, Counts, Decision,
     DepthSwitch, Descent, DescentRule, Exact, Frame, Hit, Nearest, Open, Order, PairTraversal,
-    Pairs, Place, PointDistance, Ray, RayOrder, RayTarget, Region, Same, Tally,
+    Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget, Region, Same, Tally,
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};
-pub use tree::{max_nodes, Bvh, Node, MAX_DEPTH};
+pub use tree::{max_nodes, Bvh, Content, Hierarchy, Kids, Node, MAX_DEPTH};
 
 pub use glam;

@@ -7,6 +7,7 @@
 
 pub mod collide;
 pub mod cost;
+pub mod layouts;
 pub mod mesh;
 pub mod motion;
 pub mod scene;

@@ -47,6 +47,16 @@ pub fn default_pair() -> (Vec<Triangle>, Vec<Triangle>) {
     (a, b)
 }
 
+/// The default pair at another size: `rock_pair(6)` is [`default_pair`].
+pub fn rock_pair(subdivisions: u32) -> (Vec<Triangle>, Vec<Triangle>) {
+    if subdivisions == 6 {
+        return default_pair();
+    }
+    let a = rock(subdivisions, 1);
+    let b = transformed(&rock(subdivisions, 2), 0.7, Vec3::new(1.35, 0.2, 0.1));
+    (a, b)
+}
+
 /// A small deterministic generator (SplitMix64) for the generated scenes.
 struct Rng(u64);
 

@@ -245,17 +245,7 @@ type CostReport =
 
 /// Runs the tour; `progress` is told what is being measured.
 pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourReport, bvhkit::Error> {
-    let (a, b) = if opts.subdivisions == 6 {
-        scene::default_pair()
-    } else {
-        let a = scene::rock(opts.subdivisions, 1);
-        let b = scene::transformed(
-            &scene::rock(opts.subdivisions, 2),
-            0.7,
-            bvhkit::glam::Vec3::new(1.35, 0.2, 0.1),
-        );
-        (a, b)
-    };
+    let (a, b) = scene::rock_pair(opts.subdivisions);
     progress("brute-force reference");
     let t = Instant::now();
     let reference = reference_pairs(&a, &b);

@@ -4,8 +4,8 @@
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, overlapping_pairs, Aabb, Answer, AxisChoice, BoundingVolume, Bounds, Bvh, Counts,
-    DepthSwitch, Descent, Frame, Node, OnFailure, PairTraversal, Pairs, Partition, Place,
-    Primitive, Same, SplitPoint, Stop, TopDown, Triangle,
+    DepthSwitch, Descent, Frame, Hierarchy, Node, OnFailure, PairTraversal, Pairs, Partition,
+    Place, Primitive, Same, SplitPoint, Stop, TopDown, Triangle,
 };
 use proptest::prelude::*;
 
@@ -268,17 +268,18 @@ pub fn all_traversals() -> Vec<PairTraversal<DepthSwitch<Descent, Descent>>> {
 
 /// Checks every traversal and the three result modes against
 /// [`brute_force::pairs_placed`] for one frame and answer.
-pub fn check_pairs<B, F, X>(
-    ta: &Bvh<B>,
+pub fn check_pairs<A, H, F, X>(
+    ta: &A,
     a: &[Triangle],
-    tb: &Bvh<B>,
+    tb: &H,
     b: &[Triangle],
     frame: &F,
     answer: X,
-    cfg: &TopDown,
+    cfg: &dyn std::fmt::Debug,
 ) -> Result<(), TestCaseError>
 where
-    B: BoundingVolume,
+    A: Hierarchy,
+    H: Hierarchy<Bv = A::Bv>,
     F: Frame + Place<Triangle> + Copy + std::fmt::Debug,
     X: Answer<Triangle, Triangle> + Copy + std::fmt::Debug,
 {
@@ -304,7 +305,7 @@ where
             &got,
             &want,
             "{} tree, {:?}, {:?}, {:?}, {:?}",
-            B::NAME,
+            <A::Bv as BoundingVolume>::NAME,
             traversal,
             frame,
             answer,

@@ -295,8 +295,82 @@ fn every_other_query<B: BoundingVolume>(
     total
 }
 
+/// Converting to every layout and querying each one, storage preallocated.
+fn check_layouts(failures: &mut Vec<String>) {
+    use bvhkit::layout::{
+        to_bvh, Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes,
+        Wide, WideNode,
+    };
+    use bvhkit::Query;
+    let (a, b) = (grid(600, 0.0), grid(600, 0.4));
+    let cfg = TopDown::median();
+    let mut na = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(a.len())];
+    let mut nb = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(b.len())];
+    let (mut ia, mut ib) = (vec![0u32; a.len()], vec![0u32; b.len()]);
+    let ta = cfg.build(&a, &mut na, &mut ia).unwrap();
+    let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
+    let mut slots = vec![Slot::EMPTY; Implicit::slots_needed(&ta).unwrap()];
+    let mut pre16 = vec![PreNode::<Aabb, u16>::EMPTY; ta.node_count()];
+    let mut tri = vec![TriNode::EMPTY; TriNodes::records_needed(&ta).unwrap()];
+    let mut wide = vec![WideNode::EMPTY; Wide::records_needed(&ta).unwrap()];
+    let mut quant = vec![QuantNode::EMPTY; QuantizedWide::records_needed(&ta).unwrap()];
+    let mut back = (vec![Node::EMPTY; ta.node_count()], vec![0u32; a.len()]);
+    let region = Aabb::new(Vec3::new(2.0, 2.0, 0.0), Vec3::new(9.0, 7.0, 2.0));
+    let ray = Ray::new(
+        Vec3::new(-1.0, 3.3, 0.7),
+        Vec3::new(1.0, 0.1, 0.05),
+        f32::INFINITY,
+    )
+    .unwrap();
+    fn queries<H: bvhkit::Hierarchy<Bv = Aabb>>(
+        h: &H,
+        a: &[Triangle],
+        tb: &Bvh<Aabb>,
+        b: &[Triangle],
+        region: &Aabb,
+        ray: &Ray,
+    ) -> usize {
+        let mut n = h.overlapping(a, region, |_| {}).unwrap();
+        n += h
+            .cast_ray(a, ray, RayOrder::DepthFirst, ())
+            .unwrap()
+            .is_some() as usize;
+        n += h.nearest(a, Vec3::splat(3.0), ()).unwrap().is_some() as usize;
+        for traversal in PairTraversal::all(Descent::Overlap) {
+            n += Pairs::new(h, a, tb, b)
+                .traversal(traversal)
+                .exact()
+                .count()
+                .unwrap();
+        }
+        n
+    }
+    let mut total = 0;
+    let (_, allocs) = count(|| {
+        let im = Implicit::from_bvh(&ta, &mut slots).unwrap();
+        total += queries(&im, &a, &tb, &b, &region, &ray);
+        let pre = Preorder::from_bvh(&ta, &mut pre16).unwrap();
+        total += queries(&pre, &a, &tb, &b, &region, &ray);
+        let t3 = TriNodes::from_bvh(&ta, &mut tri).unwrap();
+        total += queries(&t3, &a, &tb, &b, &region, &ray);
+        let w = Wide::from_bvh(&ta, &mut wide).unwrap();
+        total += queries(&w, &a, &tb, &b, &region, &ray);
+        let q = QuantizedWide::from_bvh(&ta, &mut quant).unwrap();
+        total += queries(&q, &a, &tb, &b, &region, &ray);
+        let r = to_bvh(&q, &mut back.0, &mut back.1).unwrap();
+        total += r.node_count();
+    });
+    if allocs != 0 {
+        failures.push(format!("layouts: {allocs} allocations"));
+    }
+    if total == 0 {
+        failures.push("layouts: the queries found nothing (scene broken)".into());
+    }
+}
+
 fn main() {
     let mut failures = Vec::new();
+    check_layouts(&mut failures);
     check::<Aabb>(&mut failures);
     check::<Sphere>(&mut failures);
     check::<Obb>(&mut failures);
@@ -307,7 +381,7 @@ fn main() {
     if n == 0 {
         failures.push("the counting allocator saw no allocation from vec![]".into());
     }
-    let cases = 5 * CONFIGS.len() + 1;
+    let cases = 5 * CONFIGS.len() + 2;
     for f in &failures {
         eprintln!("FAILED: {f}");
     }

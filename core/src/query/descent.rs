@@ -22,10 +22,10 @@ pub struct Decision<'a, B> {
     pub a: &'a B,
     /// The node of tree B, in A's frame.
     pub b: &'a B,
-    /// A's children, when asked for.
-    pub a_children: Option<[&'a B; 2]>,
+    /// A's children (two, or up to four in a wide layout), when asked for.
+    pub a_children: Option<&'a [B]>,
     /// B's children in A's frame, when asked for.
-    pub b_children: Option<[&'a B; 2]>,
+    pub b_children: Option<&'a [B]>,
     /// Descents from the root pair to this pair.
     pub depth: u32,
 }
@@ -101,7 +101,7 @@ pub enum Descent {
     Alternate,
     /// Descend by degree of overlap: open the side whose children lie least
     /// inside the other node (each child's box volume shared with the other
-    /// node's box, as a fraction of the child's box, summed over both
+    /// node's box, as a fraction of the child's box, averaged over the
     /// children). A child mostly inside the other node will not be pruned, so
     /// opening that side buys nothing. Costs four box intersections and two
     /// extra child fetches per decision.
@@ -171,8 +171,11 @@ fn by_overlap<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
             // A small pad keeps flat boxes (coplanar scenes) comparable.
             let pad = 1e-3 * a.union(&b).extent().max_element();
             let inside = |x: &Aabb, y: &Aabb| shared(x, y, pad) / shared(x, x, pad);
-            let a_stays = inside(&ac[0].aabb(), &b) + inside(&ac[1].aabb(), &b);
-            let b_stays = inside(&bc[0].aabb(), &a) + inside(&bc[1].aabb(), &a);
+            // Mean over the children, so a wide node compares with a binary one.
+            let stays = |cs: &[B], other: &Aabb| {
+                cs.iter().map(|c| inside(&c.aabb(), other)).sum::<f64>() / cs.len().max(1) as f64
+            };
+            let (a_stays, b_stays) = (stays(ac, &b), stays(bc, &a));
             if a_stays <= b_stays {
                 Open::A
             } else {

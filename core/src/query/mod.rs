@@ -18,7 +18,7 @@ mod nearest;
 mod pair;
 mod ray;
 mod single;
-mod stack;
+pub(crate) mod stack;
 mod tally;
 
 pub use collect::Collector;
@@ -27,7 +27,8 @@ pub use heap::BEST_FIRST_QUEUE;
 pub use nearest::{Nearest, PointDistance};
 pub use pair::{
     overlapping_pairs, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place, Same, PAIR_STACK,
+    WIDE_PAIR_STACK,
 };
 pub use ray::{Hit, Ray, RayOrder, RayTarget};
-pub use single::{Order, Region};
+pub use single::{Order, Query, Region};
 pub use tally::{CostModel, Counts, Tally};

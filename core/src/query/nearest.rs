@@ -10,7 +10,8 @@ use super::stack::Stack;
 use super::Tally;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
-use crate::tree::{Bvh, MAX_DEPTH};
+use crate::tree::hierarchy::{check_query, DFS_STACK};
+use crate::tree::{Bvh, Content, Hierarchy};
 use crate::{Error, Sphere};
 use glam::{DVec3, Vec3};
 
@@ -178,87 +179,94 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         &self,
         prims: &[P],
         point: Vec3,
-        mut tally: impl Tally,
+        tally: impl Tally,
     ) -> Result<Option<Nearest>, Error> {
-        self.check_query(prims.len())?;
-        if !point.is_finite() {
-            return Err(Error::InvalidConfig("the query point must be finite"));
+        nearest(self, prims, point, tally)
+    }
+}
+
+/// Best-first nearest primitive on any [`Hierarchy`] (see [`Bvh::nearest`]).
+pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
+    h: &H,
+    prims: &[P],
+    point: Vec3,
+    mut tally: impl Tally,
+) -> Result<Option<Nearest>, Error> {
+    check_query(h, prims.len())?;
+    if !point.is_finite() {
+        return Err(Error::InvalidConfig("the query point must be finite"));
+    }
+    let p = point.as_dvec3();
+    let mut best: Option<Nearest> = None;
+    let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
+    tally.bv_tests(1);
+    heap.push(lower_bound(&h.bv(h.root()), p), h.root());
+    while let Some((bound, n)) = heap.pop() {
+        if best.is_some_and(|b| bound > b.distance_squared) {
+            break;
         }
-        let nodes = self.nodes();
-        let p = point.as_dvec3();
-        let mut best: Option<Nearest> = None;
-        let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
-        tally.bv_tests(1);
-        heap.push(lower_bound(&nodes[0].bv, p), 0);
-        while let Some((bound, n)) = heap.pop() {
-            if best.is_some_and(|b| bound > b.distance_squared) {
-                break;
-            }
-            match nodes[n as usize].children() {
-                None => self.nearest_in_leaf(prims, point, n, &mut best, &mut tally),
-                Some((l, r)) => {
-                    tally.bv_tests(2);
-                    for c in [l, r] {
-                        let bc = lower_bound(&nodes[c as usize].bv, p);
-                        if best.is_some_and(|b| bc > b.distance_squared) {
-                            continue;
-                        }
-                        if !heap.push(bc, c) {
-                            self.nearest_depth_first(prims, point, c, &mut best, &mut tally)?;
-                        }
+        match h.content(n) {
+            Content::Leaf(here) => nearest_in_leaf(prims, point, here, &mut best, &mut tally),
+            Content::Inner(kids) => {
+                tally.bv_tests(kids.as_slice().len() as u32);
+                for &c in kids.as_slice() {
+                    let bc = lower_bound(&h.bv(c), p);
+                    if best.is_some_and(|b| bc > b.distance_squared) {
+                        continue;
+                    }
+                    if !heap.push(bc, c) {
+                        nearest_depth_first(h, prims, point, c, &mut best, &mut tally)?;
                     }
                 }
             }
         }
-        Ok(best)
     }
+    Ok(best)
+}
 
-    fn nearest_in_leaf<P: PointDistance>(
-        &self,
-        prims: &[P],
-        point: Vec3,
-        n: u32,
-        best: &mut Option<Nearest>,
-        tally: &mut impl Tally,
-    ) {
-        let here = self.leaf_primitives(&self.nodes()[n as usize]);
-        tally.prim_tests(here.len() as u32);
-        for &i in here {
-            let cand = Nearest {
-                prim: i,
-                distance_squared: prims[i as usize].distance_squared(point),
-            };
-            if cand.before(best) {
-                *best = Some(cand);
-            }
+fn nearest_in_leaf<P: PointDistance>(
+    prims: &[P],
+    point: Vec3,
+    here: &[u32],
+    best: &mut Option<Nearest>,
+    tally: &mut impl Tally,
+) {
+    tally.prim_tests(here.len() as u32);
+    for &i in here {
+        let cand = Nearest {
+            prim: i,
+            distance_squared: prims[i as usize].distance_squared(point),
+        };
+        if cand.before(best) {
+            *best = Some(cand);
         }
     }
+}
 
-    /// Depth-first nearest search below `root` (the best-first queue's overflow).
-    fn nearest_depth_first<P: PointDistance>(
-        &self,
-        prims: &[P],
-        point: Vec3,
-        root: u32,
-        best: &mut Option<Nearest>,
-        tally: &mut impl Tally,
-    ) -> Result<(), Error> {
-        let nodes = self.nodes();
-        let p = point.as_dvec3();
-        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(root, self.depth());
-        while let Some(n) = stack.pop() {
-            tally.bv_tests(1);
-            if best.is_some_and(|b| lower_bound(&nodes[n as usize].bv, p) > b.distance_squared) {
-                continue;
-            }
-            match nodes[n as usize].children() {
-                None => self.nearest_in_leaf(prims, point, n, best, tally),
-                Some((l, r)) => {
-                    stack.push(r)?;
-                    stack.push(l)?;
+/// Depth-first nearest search below `root` (the best-first queue's overflow).
+fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
+    h: &H,
+    prims: &[P],
+    point: Vec3,
+    root: u32,
+    best: &mut Option<Nearest>,
+    tally: &mut impl Tally,
+) -> Result<(), Error> {
+    let p = point.as_dvec3();
+    let mut stack = Stack::<u32, DFS_STACK>::with(root, h.depth());
+    while let Some(n) = stack.pop() {
+        tally.bv_tests(1);
+        if best.is_some_and(|b| lower_bound(&h.bv(n), p) > b.distance_squared) {
+            continue;
+        }
+        match h.content(n) {
+            Content::Leaf(here) => nearest_in_leaf(prims, point, here, best, tally),
+            Content::Inner(kids) => {
+                for &c in kids.as_slice().iter().rev() {
+                    stack.push(c)?;
                 }
             }
         }
-        Ok(())
     }
+    Ok(())
 }

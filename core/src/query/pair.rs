@@ -17,7 +17,8 @@ use crate::bv::BoundingVolume;
 use crate::narrow::Intersects;
 use crate::primitive::Primitive;
 use crate::transform::{Rigid, Transform};
-use crate::tree::{Bvh, Node, MAX_DEPTH};
+use crate::tree::hierarchy::{check_query, DFS_STACK};
+use crate::tree::{Content, Hierarchy, Kids, MAX_CHILDREN, MAX_DEPTH};
 use crate::Error;
 use core::ops::ControlFlow;
 
@@ -25,6 +26,21 @@ use core::ops::ControlFlow;
 /// pair waiting when one side opens and three when both open; a path has at
 /// most `2 * MAX_DEPTH` one-sided or `MAX_DEPTH` two-sided steps.
 pub const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
+
+/// Stack entries for a pair traversal when either tree is 4-wide: a
+/// two-sided step leaves up to 15 pairs waiting. Used only for wide layouts,
+/// so binary queries keep the smaller stack frame.
+pub const WIDE_PAIR_STACK: usize = 15 * MAX_DEPTH + 4;
+
+/// Most pairs waiting on the stack of a pair traversal of trees with these
+/// (arity, depth): `s` two-sided steps (at most the smaller depth) leave
+/// `ka * kb - 1` pairs each, the remaining one-sided steps `k - 1` each. The
+/// count is linear in `s`, so its maximum is at an end of the range.
+pub(crate) fn pair_stack_bound((ka, da): (usize, usize), (kb, db): (usize, usize)) -> usize {
+    let m = da.min(db);
+    let at = |s: usize| s * (ka * kb - 1) + (da - s) * (ka - 1) + (db - s) * (kb - 1);
+    at(0).max(at(m)) + 1
+}
 
 /// How a two-tree query walks the trees. The answer is the same for every
 /// choice; the work differs.
@@ -221,10 +237,10 @@ impl<P, Q, G: FnMut(&P, &Q) -> bool> Answer<P, Q> for G {
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
 #[derive(Debug)]
-pub struct Pairs<'q, B, P, Q, D = Descent, F = Same, X = Bounds, T = ()> {
-    a: &'q Bvh<'q, B>,
+pub struct Pairs<'q, A, H, P, Q, D = Descent, F = Same, X = Bounds, T = ()> {
+    a: &'q A,
     pa: &'q [P],
-    b: &'q Bvh<'q, B>,
+    b: &'q H,
     pb: &'q [Q],
     traversal: PairTraversal<D>,
     frame: F,
@@ -232,10 +248,12 @@ pub struct Pairs<'q, B, P, Q, D = Descent, F = Same, X = Bounds, T = ()> {
     tally: T,
 }
 
-impl<'q, B: BoundingVolume, P, Q> Pairs<'q, B, P, Q> {
+impl<'q, A: Hierarchy, H: Hierarchy<Bv = A::Bv>, P, Q> Pairs<'q, A, H, P, Q> {
     /// Tree A over `pa` against tree B over `pb`: stack traversal, larger-first
-    /// rule, same frame, bounds answer, no counting.
-    pub fn new(a: &'q Bvh<'q, B>, pa: &'q [P], b: &'q Bvh<'q, B>, pb: &'q [Q]) -> Self {
+    /// rule, same frame, bounds answer, no counting. A and B may be stored in
+    /// different representations ([`Bvh`], any [layout](crate::layout)) as
+    /// long as their volume type is the same.
+    pub fn new(a: &'q A, pa: &'q [P], b: &'q H, pb: &'q [Q]) -> Self {
         Pairs {
             a,
             pa,
@@ -249,9 +267,9 @@ impl<'q, B: BoundingVolume, P, Q> Pairs<'q, B, P, Q> {
     }
 }
 
-impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
+impl<'q, A, H, P, Q, D, F, X, T> Pairs<'q, A, H, P, Q, D, F, X, T> {
     /// Chooses the traversal (and with it the descent rule).
-    pub fn traversal<D2>(self, traversal: PairTraversal<D2>) -> Pairs<'q, B, P, Q, D2, F, X, T> {
+    pub fn traversal<D2>(self, traversal: PairTraversal<D2>) -> Pairs<'q, A, H, P, Q, D2, F, X, T> {
         Pairs {
             a: self.a,
             pa: self.pa,
@@ -265,17 +283,17 @@ impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
     }
 
     /// Shorthand for `traversal(PairTraversal::Stack(rule))`.
-    pub fn descent<D2>(self, rule: D2) -> Pairs<'q, B, P, Q, D2, F, X, T> {
+    pub fn descent<D2>(self, rule: D2) -> Pairs<'q, A, H, P, Q, D2, F, X, T> {
         self.traversal(PairTraversal::Stack(rule))
     }
 
     /// Queries B as if moved by `motion` (B's frame to A's), without rebuilding it.
-    pub fn in_frame(self, motion: Rigid) -> Pairs<'q, B, P, Q, D, Rigid, X, T> {
+    pub fn in_frame(self, motion: Rigid) -> Pairs<'q, A, H, P, Q, D, Rigid, X, T> {
         self.in_frame_of(motion)
     }
 
     /// Places B by any [`Frame`] ([`Same`] or a [`Rigid`] motion).
-    pub fn in_frame_of<F2>(self, frame: F2) -> Pairs<'q, B, P, Q, D, F2, X, T> {
+    pub fn in_frame_of<F2>(self, frame: F2) -> Pairs<'q, A, H, P, Q, D, F2, X, T> {
         Pairs {
             a: self.a,
             pa: self.pa,
@@ -289,7 +307,7 @@ impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
     }
 
     /// Decides primitive pairs with `answer`.
-    pub fn answer<X2>(self, answer: X2) -> Pairs<'q, B, P, Q, D, F, X2, T> {
+    pub fn answer<X2>(self, answer: X2) -> Pairs<'q, A, H, P, Q, D, F, X2, T> {
         Pairs {
             a: self.a,
             pa: self.pa,
@@ -303,12 +321,12 @@ impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
     }
 
     /// Reports only pairs that really touch (the narrow phase).
-    pub fn exact(self) -> Pairs<'q, B, P, Q, D, F, Exact, T> {
+    pub fn exact(self) -> Pairs<'q, A, H, P, Q, D, F, Exact, T> {
         self.answer(Exact)
     }
 
     /// Counts `Nv`, `Np` and `Nu` into `tally`.
-    pub fn counted<T2: Tally>(self, tally: T2) -> Pairs<'q, B, P, Q, D, F, X, T2> {
+    pub fn counted<T2: Tally>(self, tally: T2) -> Pairs<'q, A, H, P, Q, D, F, X, T2> {
         Pairs {
             a: self.a,
             pa: self.pa,
@@ -322,9 +340,10 @@ impl<'q, B, P, Q, D, F, X, T> Pairs<'q, B, P, Q, D, F, X, T> {
     }
 }
 
-impl<B, P, Q, D, F, X, T> Pairs<'_, B, P, Q, D, F, X, T>
+impl<A, H, P, Q, D, F, X, T> Pairs<'_, A, H, P, Q, D, F, X, T>
 where
-    B: BoundingVolume,
+    A: Hierarchy,
+    H: Hierarchy<Bv = A::Bv>,
     D: DescentRule,
     F: Frame + Place<Q>,
     X: Answer<P, Q>,
@@ -358,8 +377,19 @@ where
     }
 
     fn run(self, mut sink: impl FnMut(u32, u32) -> ControlFlow<()>) -> Result<(), Error> {
-        self.a.check_query(self.pa.len())?;
-        self.b.check_query(self.pb.len())?;
+        check_query(self.a, self.pa.len())?;
+        check_query(self.b, self.pb.len())?;
+        // The explicit stack is fixed; refuse up front (no partial answer)
+        // when the trees could outgrow it.
+        let binary = A::ARITY == 2 && H::ARITY == 2;
+        let capacity = if binary { PAIR_STACK } else { WIDE_PAIR_STACK };
+        let needed = pair_stack_bound((A::ARITY, self.a.depth()), (H::ARITY, self.b.depth()));
+        if needed > capacity {
+            return Err(Error::StackOverflow {
+                depth: self.a.depth() + self.b.depth(),
+                capacity,
+            });
+        }
         let (pa, pb, frame) = (self.pa, self.pb, &self.frame);
         let mut answer = self.answer;
         // Leaves visit B's primitives in the outer loop: place each one once
@@ -385,12 +415,19 @@ where
         };
         match &self.traversal {
             PairTraversal::Recursive(rule) => {
-                let rb = walk.b_bv(0);
-                let _ = walk.recurse(rule, 0, 0, &rb, 0);
+                let (ra, rb) = (self.a.root(), self.b.root());
+                let yb = walk.b_bv(rb);
+                let _ = walk.recurse(rule, ra, rb, &yb, 0);
                 Ok(())
             }
-            PairTraversal::Stack(rule) => walk.stack(rule).map(drop),
-            PairTraversal::Simultaneous => walk.stack(&Descent::Simultaneous).map(drop),
+            PairTraversal::Stack(rule) if binary => walk.stack::<_, PAIR_STACK>(rule).map(drop),
+            PairTraversal::Stack(rule) => walk.stack::<_, WIDE_PAIR_STACK>(rule).map(drop),
+            PairTraversal::Simultaneous if binary => walk
+                .stack::<_, PAIR_STACK>(&Descent::Simultaneous)
+                .map(drop),
+            PairTraversal::Simultaneous => walk
+                .stack::<_, WIDE_PAIR_STACK>(&Descent::Simultaneous)
+                .map(drop),
             PairTraversal::LeafDirected => walk.leaf_directed().map(drop),
         }
     }
@@ -418,22 +455,28 @@ where
 /// assert_eq!(pairs, [(0, 0)]);
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
-pub fn overlapping_pairs<B: BoundingVolume, P: Primitive, Q: Primitive + Clone>(
-    a: &Bvh<'_, B>,
+pub fn overlapping_pairs<A, H, P, Q>(
+    a: &A,
     prims_a: &[P],
-    b: &Bvh<'_, B>,
+    b: &H,
     prims_b: &[Q],
     rule: Descent,
     f: impl FnMut(u32, u32),
-) -> Result<usize, Error> {
+) -> Result<usize, Error>
+where
+    A: Hierarchy,
+    H: Hierarchy<Bv = A::Bv>,
+    P: Primitive,
+    Q: Primitive + Clone,
+{
     Pairs::new(a, prims_a, b, prims_b).descent(rule).for_each(f)
 }
 
 /// The machinery shared by every traversal: node access across frames,
 /// counted tests, and the leaf-pair callback.
-struct Walk<'q, B, F, T, L> {
-    a: &'q Bvh<'q, B>,
-    b: &'q Bvh<'q, B>,
+struct Walk<'q, A, H, F, T, L> {
+    a: &'q A,
+    b: &'q H,
     frame: &'q F,
     /// Move B's volumes so that they contain their primitives' new boxes
     /// (for box-comparing answers).
@@ -444,49 +487,65 @@ struct Walk<'q, B, F, T, L> {
 
 type Flow = ControlFlow<()>;
 
-impl<B, F, T, L> Walk<'_, B, F, T, L>
+/// Volumes of up to [`MAX_CHILDREN`] children, fetched once per decision.
+type ChildVolumes<B> = ([u32; MAX_CHILDREN], [B; MAX_CHILDREN], usize);
+
+impl<A, H, F, T, L> Walk<'_, A, H, F, T, L>
 where
-    B: BoundingVolume,
+    A: Hierarchy,
+    H: Hierarchy<Bv = A::Bv>,
     F: Frame,
     T: Tally,
     L: FnMut(u32, u32) -> Flow,
 {
-    #[inline(always)]
-    fn na(&self, i: u32) -> &Node<B> {
-        &self.a.nodes()[i as usize]
-    }
-
-    #[inline(always)]
-    fn nb(&self, j: u32) -> &Node<B> {
-        &self.b.nodes()[j as usize]
-    }
-
     /// B's node volume in A's frame.
     #[inline(always)]
-    fn b_bv(&mut self, j: u32) -> B {
+    fn b_bv(&mut self, j: u32) -> A::Bv {
+        let bv = self.b.bv(j);
         if !F::MOVES {
-            return self.frame.bv(&self.b.nodes()[j as usize].bv);
+            return self.frame.bv(&bv);
         }
         self.tally.updates(1);
-        let bv = &self.b.nodes()[j as usize].bv;
         if self.with_boxes {
-            self.frame.bv_with_boxes(bv)
+            self.frame.bv_with_boxes(&bv)
         } else {
-            self.frame.bv(bv)
+            self.frame.bv(&bv)
         }
     }
 
     #[inline(always)]
-    fn test(&mut self, x: &B, y: &B) -> bool {
+    fn test(&mut self, x: &A::Bv, y: &A::Bv) -> bool {
         self.tally.bv_tests(1);
         x.overlaps(y)
     }
 
+    /// A's children and their volumes.
+    #[inline(always)]
+    fn a_children(&self, kids: &Kids) -> ChildVolumes<A::Bv> {
+        let mut out = ([0; MAX_CHILDREN], [A::Bv::EMPTY; MAX_CHILDREN], 0);
+        for &c in kids.as_slice() {
+            out.0[out.2] = c;
+            out.1[out.2] = self.a.bv(c);
+            out.2 += 1;
+        }
+        out
+    }
+
+    /// B's children and their volumes in A's frame.
+    #[inline(always)]
+    fn b_children(&mut self, kids: &Kids) -> ChildVolumes<A::Bv> {
+        let mut out = ([0; MAX_CHILDREN], [A::Bv::EMPTY; MAX_CHILDREN], 0);
+        for &c in kids.as_slice() {
+            out.0[out.2] = c;
+            out.1[out.2] = self.b_bv(c);
+            out.2 += 1;
+        }
+        out
+    }
+
     /// Every primitive pair of two leaves.
     #[inline]
-    fn leaves(&mut self, i: u32, j: u32) -> Flow {
-        let (a, b) = (self.a, self.b);
-        let (la, lb) = (a.leaf_primitives(self.na(i)), b.leaf_primitives(self.nb(j)));
+    fn leaves(&mut self, la: &[u32], lb: &[u32]) -> Flow {
         for &q in lb {
             for &p in la {
                 self.tally.prim_tests(1);
@@ -496,20 +555,19 @@ where
         ControlFlow::Continue(())
     }
 
-    /// Both nodes internal: B's children in A's frame (if the rule wants
-    /// them) and the rule's choice.
+    /// Both nodes internal: the rule's choice, and B's children in A's frame
+    /// if the rule needed them.
     #[inline]
     fn decide<D: DescentRule>(
         &mut self,
         rule: &D,
-        (i, j): (u32, u32),
-        yb: &B,
+        (xa, ka): (&A::Bv, &Kids),
+        (yb, kb): (&A::Bv, &Kids),
         depth: u32,
-    ) -> (Open, Option<[B; 2]>) {
-        let x = &self.na(i).bv;
+    ) -> (Open, Option<ChildVolumes<A::Bv>>) {
         if !rule.wants_children() {
             let d = Decision {
-                a: x,
+                a: xa,
                 b: yb,
                 a_children: None,
                 b_children: None,
@@ -517,59 +575,69 @@ where
             };
             return (rule.choose(&d), None);
         }
-        let (al, ar) = children(self.na(i));
-        let (bl, br) = children(self.nb(j));
-        let bc = [self.b_bv(bl), self.b_bv(br)];
-        let (x, ac) = (&self.na(i).bv, [&self.na(al).bv, &self.na(ar).bv]);
+        let ac = self.a_children(ka);
+        let bc = self.b_children(kb);
         let d = Decision {
-            a: x,
+            a: xa,
             b: yb,
-            a_children: Some(ac),
-            b_children: Some([&bc[0], &bc[1]]),
+            a_children: Some(&ac.1[..ac.2]),
+            b_children: Some(&bc.1[..bc.2]),
             depth,
         };
-        let bc = Some(bc);
-        (rule.choose(&d), bc)
+        (rule.choose(&d), Some(bc))
     }
 
     /// The generic informed depth-first traversal, recursive. `yb` is B's
     /// node `j` already in A's frame.
-    fn recurse<D: DescentRule>(&mut self, rule: &D, i: u32, j: u32, yb: &B, depth: u32) -> Flow {
-        let xb = self.na(i).bv;
-        if !self.test(&xb, yb) {
+    fn recurse<D: DescentRule>(
+        &mut self,
+        rule: &D,
+        i: u32,
+        j: u32,
+        yb: &A::Bv,
+        depth: u32,
+    ) -> Flow {
+        let xa = self.a.bv(i);
+        if !self.test(&xa, yb) {
             return ControlFlow::Continue(());
         }
-        let open = match (self.na(i).is_leaf(), self.nb(j).is_leaf()) {
-            (true, true) => return self.leaves(i, j),
-            (false, true) => (Open::A, None),
-            (true, false) => (Open::B, None),
-            (false, false) => self.decide(rule, (i, j), yb, depth),
+        let (a, b) = (self.a, self.b);
+        let (open, known) = match (a.content(i), b.content(j)) {
+            (Content::Leaf(la), Content::Leaf(lb)) => return self.leaves(la, lb),
+            (Content::Inner(ka), Content::Leaf(_)) => ((Open::A, ka, None), None),
+            (Content::Leaf(_), Content::Inner(kb)) => ((Open::B, kb, None), None),
+            (Content::Inner(ka), Content::Inner(kb)) => {
+                let (open, known) = self.decide(rule, (&xa, &ka), (yb, &kb), depth);
+                ((open, ka, Some(kb)), known)
+            }
+        };
+        let (open, first, second) = open;
+        let b_kids = |w: &mut Self, kb: &Kids| match known {
+            Some(c) => c,
+            None => w.b_children(kb),
         };
         match open {
-            (Open::A, _) => {
-                let (l, r) = children(self.na(i));
-                self.recurse(rule, l, j, yb, depth + 1)?;
-                self.recurse(rule, r, j, yb, depth + 1)
+            Open::A => {
+                for &c in first.as_slice() {
+                    self.recurse(rule, c, j, yb, depth + 1)?;
+                }
+                ControlFlow::Continue(())
             }
-            (Open::B, known) => {
-                let (l, r) = children(self.nb(j));
-                let [lb, rb] = match known {
-                    Some(c) => c,
-                    None => [self.b_bv(l), self.b_bv(r)],
-                };
-                self.recurse(rule, i, l, &lb, depth + 1)?;
-                self.recurse(rule, i, r, &rb, depth + 1)
+            Open::B => {
+                let kb = second.unwrap_or(first);
+                let (ids, vols, n) = b_kids(self, &kb);
+                for k in 0..n {
+                    self.recurse(rule, i, ids[k], &vols[k], depth + 1)?;
+                }
+                ControlFlow::Continue(())
             }
-            (Open::Both, known) => {
-                let (al, ar) = children(self.na(i));
-                let (l, r) = children(self.nb(j));
-                let [lb, rb] = match known {
-                    Some(c) => c,
-                    None => [self.b_bv(l), self.b_bv(r)],
-                };
-                for u in [al, ar] {
-                    self.recurse(rule, u, l, &lb, depth + 1)?;
-                    self.recurse(rule, u, r, &rb, depth + 1)?;
+            Open::Both => {
+                let kb = second.unwrap_or(first);
+                let (ids, vols, n) = b_kids(self, &kb);
+                for &u in first.as_slice() {
+                    for k in 0..n {
+                        self.recurse(rule, u, ids[k], &vols[k], depth + 1)?;
+                    }
                 }
                 ControlFlow::Continue(())
             }
@@ -578,83 +646,83 @@ where
 
     /// The same traversal with an explicit stack; pairs are tested before
     /// they are pushed. `Ok(Break)` when the sink stopped early.
-    fn stack<D: DescentRule>(&mut self, rule: &D) -> Result<Flow, Error> {
-        let mut stack = [(0u32, 0u32, 0u32); PAIR_STACK];
+    fn stack<D: DescentRule, const N: usize>(&mut self, rule: &D) -> Result<Flow, Error> {
+        let mut stack = [(0u32, 0u32, 0u32); N];
         let mut top = 0;
         let overflow = Error::StackOverflow {
             depth: self.a.depth() + self.b.depth(),
-            capacity: PAIR_STACK,
+            capacity: N,
         };
         macro_rules! push {
             ($i:expr, $j:expr, $d:expr) => {{
-                if top == PAIR_STACK {
+                if top == N {
                     return Err(overflow);
                 }
                 stack[top] = ($i, $j, $d);
                 top += 1;
             }};
         }
-        let (xa, rb) = (self.na(0).bv, self.b_bv(0));
-        if self.test(&xa, &rb) {
-            push!(0, 0, 0);
+        let (a, b) = (self.a, self.b);
+        let (ra, rb) = (a.root(), b.root());
+        let (xa, yb) = (a.bv(ra), self.b_bv(rb));
+        if self.test(&xa, &yb) {
+            push!(ra, rb, 0);
         }
         while top > 0 {
             top -= 1;
             let (i, j, depth) = stack[top];
-            let (open, known, yb) = match (self.na(i).is_leaf(), self.nb(j).is_leaf()) {
-                (true, true) => {
-                    if self.leaves(i, j).is_break() {
+            let (open, ka, kb, known, yb) = match (a.content(i), b.content(j)) {
+                (Content::Leaf(la), Content::Leaf(lb)) => {
+                    if self.leaves(la, lb).is_break() {
                         return Ok(ControlFlow::Break(()));
                     }
                     continue;
                 }
-                (false, true) => (Open::A, None, None),
-                (true, false) => (Open::B, None, None),
-                (false, false) => {
-                    let yb = self.b_bv(j);
-                    let (open, known) = self.decide(rule, (i, j), &yb, depth);
-                    (open, known, Some(yb))
+                (Content::Inner(ka), Content::Leaf(_)) => (Open::A, Some(ka), None, None, None),
+                (Content::Leaf(_), Content::Inner(kb)) => (Open::B, None, Some(kb), None, None),
+                (Content::Inner(ka), Content::Inner(kb)) => {
+                    let (xa, yb) = (a.bv(i), self.b_bv(j));
+                    let (open, known) = self.decide(rule, (&xa, &ka), (&yb, &kb), depth);
+                    (open, Some(ka), Some(kb), known, Some(yb))
                 }
             };
-            match (open, known) {
-                (Open::A, _) => {
+            match open {
+                Open::A => {
                     let yb = match yb {
                         Some(y) => y,
                         None => self.b_bv(j),
                     };
-                    let (l, r) = children(self.na(i));
-                    for c in [r, l] {
-                        let cb = self.na(c).bv;
-                        if self.test(&cb, &yb) {
+                    let ka = ka.unwrap_or(Kids::two(0, 0));
+                    for &c in ka.as_slice().iter().rev() {
+                        let xc = a.bv(c);
+                        if self.test(&xc, &yb) {
                             push!(c, j, depth + 1);
                         }
                     }
                 }
-                (Open::B, known) => {
-                    let xb = self.na(i).bv;
-                    let (l, r) = children(self.nb(j));
-                    let bc = match known {
+                Open::B => {
+                    let xa = a.bv(i);
+                    let (ids, vols, n) = match known {
                         Some(c) => c,
-                        None => [self.b_bv(l), self.b_bv(r)],
+                        None => self.b_children(&kb.unwrap_or(Kids::two(0, 0))),
                     };
-                    for (c, cb) in [(r, &bc[1]), (l, &bc[0])] {
-                        if self.test(&xb, cb) {
-                            push!(i, c, depth + 1);
+                    for k in (0..n).rev() {
+                        if self.test(&xa, &vols[k]) {
+                            push!(i, ids[k], depth + 1);
                         }
                     }
                 }
-                (Open::Both, known) => {
-                    let (al, ar) = children(self.na(i));
-                    let (l, r) = children(self.nb(j));
-                    let bc = match known {
+                Open::Both => {
+                    let ka = ka.unwrap_or(Kids::two(0, 0));
+                    let (ids, vols, n) = match known {
                         Some(c) => c,
-                        None => [self.b_bv(l), self.b_bv(r)],
+                        None => self.b_children(&kb.unwrap_or(Kids::two(0, 0))),
                     };
-                    for u in [ar, al] {
-                        let ub = self.na(u).bv;
-                        for (v, vb) in [(r, &bc[1]), (l, &bc[0])] {
-                            if self.test(&ub, vb) {
-                                push!(u, v, depth + 1);
+                    for &u in ka.as_slice().iter().rev() {
+                        let xu = a.bv(u);
+                        for k in (0..n).rev() {
+                            if self.test(&xu, &vols[k]) {
+                                push!(u, ids[k], depth + 1);
                             }
                         }
                     }
@@ -667,35 +735,40 @@ where
     /// Leaf-directed: depth-first over A pruned by B's root; at each leaf of
     /// A, a single-tree descent of B with that leaf's volume.
     fn leaf_directed(&mut self) -> Result<Flow, Error> {
-        let depth = self.a.depth().max(self.b.depth());
-        let rb = self.b_bv(0);
-        let xa = self.na(0).bv;
+        let (a, b) = (self.a, self.b);
+        let depth = a.depth().max(b.depth());
+        let rb = self.b_bv(b.root());
+        let xa = a.bv(a.root());
         if !self.test(&xa, &rb) {
             return Ok(ControlFlow::Continue(()));
         }
-        let mut sa = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, depth);
+        let mut sa = Stack::<u32, DFS_STACK>::with(a.root(), depth);
+        let mut sb = Stack::<u32, DFS_STACK>::with(b.root(), depth);
         while let Some(i) = sa.pop() {
-            if let Some((l, r)) = self.na(i).children() {
-                for c in [r, l] {
-                    let cb = self.na(c).bv;
-                    if self.test(&cb, &rb) {
-                        sa.push(c)?;
+            let la = match a.content(i) {
+                Content::Inner(kids) => {
+                    for &c in kids.as_slice().iter().rev() {
+                        let cb = a.bv(c);
+                        if self.test(&cb, &rb) {
+                            sa.push(c)?;
+                        }
                     }
+                    continue;
                 }
-                continue;
-            }
+                Content::Leaf(la) => la,
+            };
             // A leaf of A that overlaps B's root: descend B with its volume.
-            let xb = self.na(i).bv;
-            let mut sb = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, depth);
+            let xb = a.bv(i);
+            sb.reset(b.root());
             while let Some(j) = sb.pop() {
-                match self.nb(j).children() {
-                    None => {
-                        if self.leaves(i, j).is_break() {
+                match b.content(j) {
+                    Content::Leaf(lb) => {
+                        if self.leaves(la, lb).is_break() {
                             return Ok(ControlFlow::Break(()));
                         }
                     }
-                    Some((l, r)) => {
-                        for c in [r, l] {
+                    Content::Inner(kids) => {
+                        for &c in kids.as_slice().iter().rev() {
                             let cb = self.b_bv(c);
                             if self.test(&xb, &cb) {
                                 sb.push(c)?;
@@ -707,10 +780,4 @@ where
         }
         Ok(ControlFlow::Continue(()))
     }
-}
-
-/// The children of an internal node (callers check `is_leaf` first).
-#[inline(always)]
-fn children<B: BoundingVolume>(n: &Node<B>) -> (u32, u32) {
-    (n.first, n.first + 1)
 }

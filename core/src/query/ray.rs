@@ -12,7 +12,8 @@ use super::stack::Stack;
 use super::Tally;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
-use crate::tree::{Bvh, MAX_DEPTH};
+use crate::tree::hierarchy::{check_query, DFS_STACK};
+use crate::tree::{Bvh, Content, Hierarchy, MAX_CHILDREN};
 use crate::{Error, Sphere};
 use glam::Vec3;
 
@@ -222,126 +223,9 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         prims: &[P],
         ray: &Ray,
         order: RayOrder,
-        mut tally: impl Tally,
+        tally: impl Tally,
     ) -> Result<Option<Hit>, Error> {
-        self.check_query(prims.len())?;
-        let inv = ray.dir.recip();
-        let nodes = self.nodes();
-        let mut best: Option<Hit> = None;
-        tally.bv_tests(1);
-        let Some(t_root) = slab(&nodes[0].bv.aabb(), ray, inv) else {
-            return Ok(None);
-        };
-        let leaf = |node: u32, best: &mut Option<Hit>, tally: &mut dyn FnMut(u32)| {
-            let prims_here = self.leaf_primitives(&nodes[node as usize]);
-            tally(prims_here.len() as u32);
-            for &p in prims_here {
-                if let Some(t) = prims[p as usize].ray_hit(ray) {
-                    let h = Hit { prim: p, t };
-                    if h.before(best) {
-                        *best = Some(h);
-                    }
-                }
-            }
-        };
-        let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
-        match order {
-            RayOrder::DepthFirst => {
-                let mut stack =
-                    Stack::<(u32, f32), { MAX_DEPTH + 1 }>::with((0, t_root), self.depth());
-                while let Some((n, t)) = stack.pop() {
-                    if beaten(t, &best) {
-                        continue;
-                    }
-                    match nodes[n as usize].children() {
-                        None => leaf(n, &mut best, &mut |k| tally.prim_tests(k)),
-                        Some((l, r)) => {
-                            tally.bv_tests(2);
-                            let tl = slab(&nodes[l as usize].bv.aabb(), ray, inv);
-                            let tr = slab(&nodes[r as usize].bv.aabb(), ray, inv);
-                            // Push the farther child first so the nearer is opened first.
-                            let mut kids = [(l, tl), (r, tr)];
-                            if tl.unwrap_or(f32::INFINITY) < tr.unwrap_or(f32::INFINITY) {
-                                kids.swap(0, 1);
-                            }
-                            for (c, tc) in kids {
-                                if let Some(tc) = tc {
-                                    stack.push((c, tc))?;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            RayOrder::BestFirst => {
-                let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
-                heap.push(t_root as f64, 0);
-                while let Some((t, n)) = heap.pop() {
-                    if beaten(t as f32, &best) {
-                        // Every queued node is at least this far: done.
-                        break;
-                    }
-                    match nodes[n as usize].children() {
-                        None => leaf(n, &mut best, &mut |k| tally.prim_tests(k)),
-                        Some((l, r)) => {
-                            tally.bv_tests(2);
-                            for c in [l, r] {
-                                let Some(tc) = slab(&nodes[c as usize].bv.aabb(), ray, inv) else {
-                                    continue;
-                                };
-                                if !heap.push(tc as f64, c) {
-                                    // Queue full: search this subtree depth-first now.
-                                    let sub =
-                                        self.subtree_ray(prims, ray, inv, c, best, &mut tally)?;
-                                    best = sub;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        Ok(best)
-    }
-
-    /// Depth-first closest hit below `root`, starting from `best`.
-    fn subtree_ray<P: RayTarget>(
-        &self,
-        prims: &[P],
-        ray: &Ray,
-        inv: Vec3,
-        root: u32,
-        mut best: Option<Hit>,
-        tally: &mut impl Tally,
-    ) -> Result<Option<Hit>, Error> {
-        let nodes = self.nodes();
-        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(root, self.depth());
-        while let Some(n) = stack.pop() {
-            tally.bv_tests(1);
-            match slab(&nodes[n as usize].bv.aabb(), ray, inv) {
-                Some(t) if !best.is_some_and(|b| t > b.t) => {}
-                _ => continue,
-            }
-            match nodes[n as usize].children() {
-                None => {
-                    let here = self.leaf_primitives(&nodes[n as usize]);
-                    tally.prim_tests(here.len() as u32);
-                    for &p in here {
-                        if let Some(t) = prims[p as usize].ray_hit(ray) {
-                            let h = Hit { prim: p, t };
-                            if h.before(&best) {
-                                best = Some(h);
-                            }
-                        }
-                    }
-                }
-                Some((l, r)) => {
-                    stack.push(r)?;
-                    stack.push(l)?;
-                }
-            }
-        }
-        Ok(best)
+        cast_ray(self, prims, ray, order, tally)
     }
 
     /// Some primitive the ray hits (not necessarily the closest), or `None`:
@@ -350,32 +234,175 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         &self,
         prims: &[P],
         ray: &Ray,
-        mut tally: impl Tally,
+        tally: impl Tally,
     ) -> Result<Option<Hit>, Error> {
-        self.check_query(prims.len())?;
-        let inv = ray.dir.recip();
-        let nodes = self.nodes();
-        let mut stack = Stack::<u32, { MAX_DEPTH + 1 }>::with(0, self.depth());
-        while let Some(n) = stack.pop() {
-            tally.bv_tests(1);
-            if slab(&nodes[n as usize].bv.aabb(), ray, inv).is_none() {
-                continue;
+        ray_hits_any(self, prims, ray, tally)
+    }
+}
+
+/// The ray's entry parameter into a node's volume (through its box).
+#[inline(always)]
+fn enter<H: Hierarchy + ?Sized>(h: &H, n: u32, ray: &Ray, inv: Vec3) -> Option<f32> {
+    slab(&h.bv(n).aabb(), ray, inv)
+}
+
+/// Tests a leaf's primitives, keeping the closest hit in `best`.
+#[inline]
+fn closest_in_leaf<P: RayTarget>(
+    prims: &[P],
+    here: &[u32],
+    ray: &Ray,
+    best: &mut Option<Hit>,
+    tally: &mut impl Tally,
+) {
+    tally.prim_tests(here.len() as u32);
+    for &p in here {
+        if let Some(t) = prims[p as usize].ray_hit(ray) {
+            let h = Hit { prim: p, t };
+            if h.before(best) {
+                *best = Some(h);
             }
-            match nodes[n as usize].children() {
-                None => {
-                    for &p in self.leaf_primitives(&nodes[n as usize]) {
-                        tally.prim_tests(1);
-                        if let Some(t) = prims[p as usize].ray_hit(ray) {
-                            return Ok(Some(Hit { prim: p, t }));
+        }
+    }
+}
+
+/// Closest hit on any [`Hierarchy`] (see [`Bvh::cast_ray`]).
+pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
+    h: &H,
+    prims: &[P],
+    ray: &Ray,
+    order: RayOrder,
+    mut tally: impl Tally,
+) -> Result<Option<Hit>, Error> {
+    check_query(h, prims.len())?;
+    let inv = ray.dir.recip();
+    let mut best: Option<Hit> = None;
+    tally.bv_tests(1);
+    let Some(t_root) = enter(h, h.root(), ray, inv) else {
+        return Ok(None);
+    };
+    let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
+    match order {
+        RayOrder::DepthFirst => {
+            let mut stack = Stack::<(u32, f32), DFS_STACK>::with((h.root(), t_root), h.depth());
+            while let Some((n, t)) = stack.pop() {
+                if beaten(t, &best) {
+                    continue;
+                }
+                match h.content(n) {
+                    Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, &mut tally),
+                    Content::Inner(kids) => {
+                        let kids = kids.as_slice();
+                        tally.bv_tests(kids.len() as u32);
+                        // Sort the hit children far to near, so the nearest is popped first.
+                        let mut hit = [(0u32, 0f32); MAX_CHILDREN];
+                        let mut m = 0;
+                        for &c in kids {
+                            if let Some(tc) = enter(h, c, ray, inv) {
+                                let mut k = m;
+                                while k > 0 && hit[k - 1].1 < tc {
+                                    hit[k] = hit[k - 1];
+                                    k -= 1;
+                                }
+                                hit[k] = (c, tc);
+                                m += 1;
+                            }
+                        }
+                        for &e in &hit[..m] {
+                            stack.push(e)?;
                         }
                     }
                 }
-                Some((l, r)) => {
-                    stack.push(r)?;
-                    stack.push(l)?;
+            }
+        }
+        RayOrder::BestFirst => {
+            let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
+            heap.push(t_root as f64, h.root());
+            while let Some((t, n)) = heap.pop() {
+                if beaten(t as f32, &best) {
+                    // Every queued node is at least this far: done.
+                    break;
+                }
+                match h.content(n) {
+                    Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, &mut tally),
+                    Content::Inner(kids) => {
+                        tally.bv_tests(kids.as_slice().len() as u32);
+                        for &c in kids.as_slice() {
+                            let Some(tc) = enter(h, c, ray, inv) else {
+                                continue;
+                            };
+                            if !heap.push(tc as f64, c) {
+                                // Queue full: search this subtree depth-first now.
+                                best = subtree_ray(h, prims, ray, inv, c, best, &mut tally)?;
+                            }
+                        }
+                    }
                 }
             }
         }
-        Ok(None)
     }
+    Ok(best)
+}
+
+/// Depth-first closest hit below `root`, starting from `best`.
+fn subtree_ray<H: Hierarchy + ?Sized, P: RayTarget>(
+    h: &H,
+    prims: &[P],
+    ray: &Ray,
+    inv: Vec3,
+    root: u32,
+    mut best: Option<Hit>,
+    tally: &mut impl Tally,
+) -> Result<Option<Hit>, Error> {
+    let mut stack = Stack::<u32, DFS_STACK>::with(root, h.depth());
+    while let Some(n) = stack.pop() {
+        tally.bv_tests(1);
+        match enter(h, n, ray, inv) {
+            Some(t) if !best.is_some_and(|b| t > b.t) => {}
+            _ => continue,
+        }
+        match h.content(n) {
+            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
+            Content::Inner(kids) => {
+                for &c in kids.as_slice().iter().rev() {
+                    stack.push(c)?;
+                }
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// Any hit on any [`Hierarchy`] (see [`Bvh::ray_hits_any`]).
+pub(crate) fn ray_hits_any<H: Hierarchy + ?Sized, P: RayTarget>(
+    h: &H,
+    prims: &[P],
+    ray: &Ray,
+    mut tally: impl Tally,
+) -> Result<Option<Hit>, Error> {
+    check_query(h, prims.len())?;
+    let inv = ray.dir.recip();
+    let mut stack = Stack::<u32, DFS_STACK>::with(h.root(), h.depth());
+    while let Some(n) = stack.pop() {
+        tally.bv_tests(1);
+        if enter(h, n, ray, inv).is_none() {
+            continue;
+        }
+        match h.content(n) {
+            Content::Leaf(here) => {
+                for &p in here {
+                    tally.prim_tests(1);
+                    if let Some(t) = prims[p as usize].ray_hit(ray) {
+                        return Ok(Some(Hit { prim: p, t }));
+                    }
+                }
+            }
+            Content::Inner(kids) => {
+                for &c in kids.as_slice().iter().rev() {
+                    stack.push(c)?;
+                }
+            }
+        }
+    }
+    Ok(None)
 }

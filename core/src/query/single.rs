@@ -1,10 +1,13 @@
 //! Single-tree queries: which primitives does a region touch?
 
-use super::Tally;
+use super::stack::Stack;
+use super::{Hit, Nearest, PointDistance, Ray, RayOrder, RayTarget, Tally};
 use crate::bv::{Aabb, BoundingVolume, Kdop, Sphere};
 use crate::primitive::Primitive;
-use crate::tree::{Bvh, MAX_DEPTH};
+use crate::tree::hierarchy::{check_query, DFS_STACK};
+use crate::tree::{Bvh, Content, Hierarchy, Kids};
 use crate::Error;
+use glam::Vec3;
 
 /// A volume that can be used as a query region.
 ///
@@ -43,7 +46,7 @@ impl<const K: usize> Region for Kdop<K> {}
 /// Traversal order of a single-tree query.
 ///
 /// Lecture: *hierarchy traversal*. Depth-first needs a stack as deep as the
-/// tree (fixed, [`MAX_DEPTH`]` + 1` entries); breadth-first needs a queue as
+/// tree (a fixed stack sized from [`MAX_DEPTH`](crate::MAX_DEPTH)); breadth-first needs a queue as
 /// wide as the tree (up to its leaf count, given by the caller), which is why
 /// collision detection favours depth-first.
 #[derive(Debug)]
@@ -55,6 +58,214 @@ pub enum Order<'q> {
     /// Breadth-first with a caller-provided queue of at least
     /// [`Bvh::breadth_first_queue`] entries.
     BreadthFirst(&'q mut [u32]),
+}
+
+/// The single-tree queries, for every [`Hierarchy`] (the canonical [`Bvh`]
+/// and every [layout](crate::layout)). `Bvh` has the same methods inherently,
+/// so it needs no import.
+pub trait Query: Hierarchy {
+    /// Calls `f` with every primitive whose bounds overlap `region` (an
+    /// [`Aabb`], [`Sphere`] or [`Kdop`]); returns the count. Depth-first with
+    /// a fixed stack; children are tested before they are pushed. The answer
+    /// equals [`brute_force::overlapping`](crate::brute_force::overlapping).
+    fn overlapping<P: Primitive, R: Region>(
+        &self,
+        prims: &[P],
+        region: &R,
+        mut f: impl FnMut(u32),
+    ) -> Result<usize, Error> {
+        check_query(self, prims.len())?;
+        let mut found = 0;
+        let root = self.root();
+        if !region.may_overlap(&self.bv(root)) {
+            return Ok(0);
+        }
+        let mut stack = Stack::<u32, DFS_STACK>::with(root, self.depth());
+        while let Some(n) = stack.pop() {
+            match self.content(n) {
+                Content::Leaf(here) => {
+                    for &p in here {
+                        if region.overlaps_aabb(&prims[p as usize].bounds()) {
+                            f(p);
+                            found += 1;
+                        }
+                    }
+                }
+                Content::Inner(kids) => {
+                    for &c in kids.as_slice().iter().rev() {
+                        if region.may_overlap(&self.bv(c)) {
+                            stack.push(c)?;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(found)
+    }
+
+    /// The same query with a choice of traversal [`Order`] and a [`Tally`]
+    /// (`Nv` = node tests, `Np` = primitive tests). Every order returns the
+    /// same primitives; the order in which `f` sees them differs.
+    fn search<P: Primitive, R: Region>(
+        &self,
+        prims: &[P],
+        region: &R,
+        order: Order<'_>,
+        mut tally: impl Tally,
+        mut f: impl FnMut(u32),
+    ) -> Result<usize, Error> {
+        check_query(self, prims.len())?;
+        let mut found = 0;
+        // Tests a leaf's primitives; returns how many were tested.
+        let mut visit_leaf = |here: &[u32]| {
+            for &p in here {
+                if region.overlaps_aabb(&prims[p as usize].bounds()) {
+                    f(p);
+                    found += 1;
+                }
+            }
+            here.len() as u32
+        };
+        match order {
+            Order::DepthFirst => {
+                let mut stack = Stack::<u32, DFS_STACK>::with(self.root(), self.depth());
+                while let Some(n) = stack.pop() {
+                    tally.bv_tests(1);
+                    if !region.may_overlap(&self.bv(n)) {
+                        continue;
+                    }
+                    match self.content(n) {
+                        Content::Leaf(here) => tally.prim_tests(visit_leaf(here)),
+                        Content::Inner(kids) => {
+                            for &c in kids.as_slice().iter().rev() {
+                                stack.push(c)?;
+                            }
+                        }
+                    }
+                }
+            }
+            Order::Recursive => {
+                fn walk<H: Hierarchy + ?Sized, R: Region>(
+                    h: &H,
+                    n: u32,
+                    region: &R,
+                    tally: &mut impl Tally,
+                    leaf: &mut impl FnMut(&[u32]) -> u32,
+                ) {
+                    tally.bv_tests(1);
+                    if !region.may_overlap(&h.bv(n)) {
+                        return;
+                    }
+                    match h.content(n) {
+                        Content::Leaf(here) => tally.prim_tests(leaf(here)),
+                        Content::Inner(kids) => {
+                            for &c in kids.as_slice() {
+                                walk(h, c, region, tally, leaf);
+                            }
+                        }
+                    }
+                }
+                walk(self, self.root(), region, &mut tally, &mut visit_leaf);
+            }
+            Order::BreadthFirst(queue) => {
+                let needed = self.breadth_first_queue();
+                if queue.len() < needed {
+                    return Err(Error::QueueCapacity {
+                        needed,
+                        available: queue.len(),
+                    });
+                }
+                bfs(self, queue, |n| {
+                    tally.bv_tests(1);
+                    if !region.may_overlap(&self.bv(n)) {
+                        return None;
+                    }
+                    match self.content(n) {
+                        Content::Leaf(here) => {
+                            tally.prim_tests(visit_leaf(here));
+                            None
+                        }
+                        Content::Inner(kids) => Some(kids),
+                    }
+                })?;
+            }
+        }
+        Ok(found)
+    }
+
+    /// The closest primitive the ray hits (see [`Bvh::cast_ray`]).
+    fn cast_ray<P: RayTarget>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        order: RayOrder,
+        tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        super::ray::cast_ray(self, prims, ray, order, tally)
+    }
+
+    /// Some primitive the ray hits, stopping at the first (see [`Bvh::ray_hits_any`]).
+    fn ray_hits_any<P: RayTarget>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        super::ray::ray_hits_any(self, prims, ray, tally)
+    }
+
+    /// The primitive nearest to `point`, best-first (see [`Bvh::nearest`]).
+    fn nearest<P: PointDistance>(
+        &self,
+        prims: &[P],
+        point: Vec3,
+        tally: impl Tally,
+    ) -> Result<Option<Nearest>, Error> {
+        super::nearest::nearest(self, prims, point, tally)
+    }
+
+    /// Queue entries [`Order::BreadthFirst`] needs for this tree: its leaf
+    /// count bounds the number of nodes waiting at once (none of them
+    /// contains another), and a tree has fewer leaves than nodes.
+    fn breadth_first_queue(&self) -> usize {
+        if Self::ARITY == 2 {
+            self.node_count().div_ceil(2)
+        } else {
+            self.node_count()
+        }
+    }
+}
+
+impl<H: Hierarchy + ?Sized> Query for H {}
+
+/// Breadth-first over `h` with `queue` as a ring buffer of node ids; `open`
+/// tests a node and returns the children to enqueue.
+fn bfs<H: Hierarchy + ?Sized>(
+    h: &H,
+    queue: &mut [u32],
+    mut open: impl FnMut(u32) -> Option<Kids>,
+) -> Result<(), Error> {
+    let cap = queue.len();
+    let (mut head, mut len) = (0usize, 1usize);
+    queue[0] = h.root();
+    while len > 0 {
+        let n = queue[head];
+        head = (head + 1) % cap;
+        len -= 1;
+        if let Some(kids) = open(n) {
+            for &c in kids.as_slice() {
+                if len == cap {
+                    return Err(Error::QueueCapacity {
+                        needed: cap + 1,
+                        available: cap,
+                    });
+                }
+                queue[(head + len) % cap] = c;
+                len += 1;
+            }
+        }
+    }
+    Ok(())
 }
 
 impl<B: BoundingVolume> Bvh<'_, B> {
@@ -87,41 +298,9 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         &self,
         prims: &[P],
         region: &R,
-        mut f: impl FnMut(u32),
+        f: impl FnMut(u32),
     ) -> Result<usize, Error> {
-        self.check_query(prims.len())?;
-        let nodes = self.nodes();
-        let mut stack = [0u32; MAX_DEPTH + 1];
-        let mut top = 0;
-        let mut found = 0;
-        if region.may_overlap(&nodes[0].bv) {
-            stack[0] = 0;
-            top = 1;
-        }
-        while top > 0 {
-            top -= 1;
-            let node = &nodes[stack[top] as usize];
-            match node.children() {
-                None => {
-                    for &p in self.leaf_primitives(node) {
-                        if region.overlaps_aabb(&prims[p as usize].bounds()) {
-                            f(p);
-                            found += 1;
-                        }
-                    }
-                }
-                Some((l, r)) => {
-                    // At most one sibling waits per level: depth + 1 entries suffice.
-                    for c in [r, l] {
-                        if region.may_overlap(&nodes[c as usize].bv) {
-                            stack[top] = c;
-                            top += 1;
-                        }
-                    }
-                }
-            }
-        }
-        Ok(found)
+        Query::overlapping(self, prims, region, f)
     }
 
     /// The same query with a choice of traversal order and a [`Tally`]
@@ -149,121 +328,14 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         prims: &[P],
         region: &R,
         order: Order<'_>,
-        mut tally: impl Tally,
-        mut f: impl FnMut(u32),
+        tally: impl Tally,
+        f: impl FnMut(u32),
     ) -> Result<usize, Error> {
-        self.check_query(prims.len())?;
-        let nodes = self.nodes();
-        let mut found = 0;
-        // Tests a leaf's primitives; returns how many were tested.
-        let mut visit_leaf = |n: u32| {
-            let here = self.leaf_primitives(&nodes[n as usize]);
-            for &p in here {
-                if region.overlaps_aabb(&prims[p as usize].bounds()) {
-                    f(p);
-                    found += 1;
-                }
-            }
-            here.len() as u32
-        };
-        match order {
-            Order::DepthFirst => {
-                let mut stack = [0u32; MAX_DEPTH + 2];
-                let mut top = 1;
-                while top > 0 {
-                    top -= 1;
-                    let n = stack[top];
-                    tally.bv_tests(1);
-                    if !region.may_overlap(&nodes[n as usize].bv) {
-                        continue;
-                    }
-                    match nodes[n as usize].children() {
-                        None => tally.prim_tests(visit_leaf(n)),
-                        Some((l, r)) => {
-                            stack[top] = r;
-                            stack[top + 1] = l;
-                            top += 2;
-                        }
-                    }
-                }
-            }
-            Order::Recursive => {
-                fn walk<B: BoundingVolume, R: Region>(
-                    nodes: &[crate::Node<B>],
-                    n: u32,
-                    region: &R,
-                    tally: &mut impl Tally,
-                    leaf: &mut impl FnMut(u32) -> u32,
-                ) {
-                    tally.bv_tests(1);
-                    if !region.may_overlap(&nodes[n as usize].bv) {
-                        return;
-                    }
-                    match nodes[n as usize].children() {
-                        None => tally.prim_tests(leaf(n)),
-                        Some((l, r)) => {
-                            walk(nodes, l, region, tally, leaf);
-                            walk(nodes, r, region, tally, leaf);
-                        }
-                    }
-                }
-                walk(nodes, 0, region, &mut tally, &mut visit_leaf);
-            }
-            Order::BreadthFirst(queue) => {
-                let needed = self.breadth_first_queue();
-                if queue.len() < needed {
-                    return Err(Error::QueueCapacity {
-                        needed,
-                        available: queue.len(),
-                    });
-                }
-                // A ring buffer: the queue never holds more nodes than the
-                // tree has leaves (the nodes in it never contain one another).
-                let cap = queue.len();
-                let (mut head, mut len) = (0usize, 1usize);
-                queue[0] = 0;
-                while len > 0 {
-                    let n = queue[head];
-                    head = (head + 1) % cap;
-                    len -= 1;
-                    tally.bv_tests(1);
-                    if !region.may_overlap(&nodes[n as usize].bv) {
-                        continue;
-                    }
-                    match nodes[n as usize].children() {
-                        None => tally.prim_tests(visit_leaf(n)),
-                        Some((l, r)) => {
-                            for c in [l, r] {
-                                queue[(head + len) % cap] = c;
-                                len += 1;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        Ok(found)
+        Query::search(self, prims, region, order, tally, f)
     }
 
     /// Queue entries [`Order::BreadthFirst`] needs for this tree: its leaf count.
     pub fn breadth_first_queue(&self) -> usize {
-        self.node_count().div_ceil(2)
-    }
-
-    /// Checks that a query can run: the primitive slice matches and the tree fits the stack.
-    pub(crate) fn check_query(&self, given: usize) -> Result<(), Error> {
-        if given != self.primitive_count() {
-            return Err(Error::PrimitiveCountMismatch {
-                tree: self.primitive_count(),
-                given,
-            });
-        }
-        if self.depth() > MAX_DEPTH {
-            return Err(Error::StackOverflow {
-                depth: self.depth(),
-                capacity: MAX_DEPTH,
-            });
-        }
-        Ok(())
+        Query::breadth_first_queue(self)
     }
 }

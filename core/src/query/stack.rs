@@ -21,6 +21,13 @@ impl<T: Copy, const N: usize> Stack<T, N> {
         }
     }
 
+    /// Empties the stack and pushes `first` (reuse without re-initialising).
+    #[inline]
+    pub(crate) fn reset(&mut self, first: T) {
+        self.items[0] = first;
+        self.len = 1;
+    }
+
     #[inline]
     pub(crate) fn push(&mut self, item: T) -> Result<(), Error> {
         let slot = self.items.get_mut(self.len).ok_or(Error::StackOverflow {

@@ -9,7 +9,10 @@
 //! leaf has at most `2n - 1` nodes ([`max_nodes`]) and its index array holds `n`
 //! entries.
 
+pub(crate) mod hierarchy;
 mod validate;
+
+pub use hierarchy::{Content, Hierarchy, Kids, MAX_CHILDREN};
 
 use crate::bv::BoundingVolume;
 use crate::primitive::Primitive;

@@ -79,6 +79,24 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Measure every tree representation (canonical, implicit array,
+    /// preorder with 32- and 16-bit links, tri-node, 4-wide, quantized 4-wide)
+    /// on the built-in rock pair: bytes per triangle, conversion time, pair and
+    /// ray query time, and whether the answers equal the canonical tree's.
+    Layouts {
+        /// Icosphere subdivisions per rock (6 = 81 920 triangles, 8 = 1 310 720).
+        #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(1..=9))]
+        subdivisions: u32,
+        /// Rays cast at rock A.
+        #[arg(long, default_value_t = 10_000)]
+        rays: usize,
+        /// Timed runs per measurement; the median (or minimum for conversions) is reported.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=50))]
+        runs: u64,
+        /// Print the rows as JSON.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -104,6 +122,45 @@ fn print_json<T: serde::Serialize>(value: &T) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Layouts {
+            subdivisions,
+            rays,
+            runs,
+            json,
+        } => {
+            eprintln!("building the rock pair ({subdivisions} subdivisions) and every layout...");
+            let (a, b) = bvhkit_std::scene::rock_pair(subdivisions);
+            let rows = match bvhkit_std::layouts::measure(
+                &a,
+                &b,
+                &bvhkit::TopDown::sah(),
+                rays,
+                runs as usize,
+            ) {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            if json {
+                if !print_json(&rows) {
+                    return ExitCode::FAILURE;
+                }
+            } else {
+                println!(
+                    "scene: two rocks of {} triangles, sah builder, AABB, {} rays",
+                    a.len(),
+                    rays
+                );
+                print!("{}", bvhkit_std::layouts::render(&rows));
+            }
+            if rows.iter().all(|r| r.same_answers) {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            }
+        }
         Command::Tour {
             json,
             subdivisions,

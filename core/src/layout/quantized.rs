@@ -1,0 +1,249 @@
+//! Quantized 4-wide records: child boxes as 8-bit integers in the parent's frame.
+
+use super::{check_capacity, wide::measure_depth, wide_walk};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
+use crate::Error;
+use glam::Vec3;
+
+/// Leaf-size value of an unused slot.
+const UNUSED: u8 = u8::MAX;
+/// Largest leaf a quantized slot can hold.
+const MAX_LEAF: usize = UNUSED as usize - 1;
+
+/// One quantized 4-wide record: 64 bytes, one cache line.
+///
+/// The children's boxes are stored as 8-bit grid coordinates: a coordinate
+/// `q` on axis `k` stands for `origin[k] + q * 2^exp[k]`. The grid spans the
+/// union of the children's boxes, and each child's box is rounded *outward*
+/// to grid lines (checked by decoding it again), so the decoded box always
+/// contains the exact one: quantized bounds are looser, never wrong.
+/// `count[k]` is 0 for an internal child, 1..=254 for a leaf, 255 unused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct QuantNode {
+    origin: [f32; 3],
+    exp: [i8; 3],
+    _pad: u8,
+    lo: [[u8; MAX_CHILDREN]; 3],
+    hi: [[u8; MAX_CHILDREN]; 3],
+    child: [u32; MAX_CHILDREN],
+    count: [u8; MAX_CHILDREN],
+}
+
+/// `2^e` for `e` in the normal `f32` range, exactly.
+#[inline(always)]
+fn pow2(e: i8) -> f32 {
+    f32::from_bits(((e as i32 + 127) as u32) << 23)
+}
+
+impl QuantNode {
+    /// A blank record, for initialising storage.
+    pub const EMPTY: Self = QuantNode {
+        origin: [0.0; 3],
+        exp: [0; 3],
+        _pad: 0,
+        lo: [[0; MAX_CHILDREN]; 3],
+        hi: [[0; MAX_CHILDREN]; 3],
+        child: [0; MAX_CHILDREN],
+        count: [UNUSED; MAX_CHILDREN],
+    };
+
+    /// Decodes one grid coordinate: the only formula queries use, so the
+    /// encoder checks its roundings against exactly this.
+    #[inline(always)]
+    fn decode(&self, axis: usize, q: u8) -> f32 {
+        self.origin[axis] + q as f32 * pow2(self.exp[axis])
+    }
+
+    /// The (conservative) box of slot `k`.
+    #[inline(always)]
+    pub fn slot_box(&self, k: usize) -> Aabb {
+        Aabb::new(
+            Vec3::new(
+                self.decode(0, self.lo[0][k]),
+                self.decode(1, self.lo[1][k]),
+                self.decode(2, self.lo[2][k]),
+            ),
+            Vec3::new(
+                self.decode(0, self.hi[0][k]),
+                self.decode(1, self.hi[1][k]),
+                self.decode(2, self.hi[2][k]),
+            ),
+        )
+    }
+
+    /// Encodes exact child boxes (all finite) into a record whose grid spans
+    /// their union; each decoded box contains its exact box.
+    pub fn encode(boxes: &[Aabb]) -> QuantNode {
+        let mut r = QuantNode::EMPTY;
+        let Some(first) = boxes.first() else {
+            return r;
+        };
+        let frame = boxes.iter().fold(*first, |acc, b| acc.union(b));
+        for axis in 0..3 {
+            let (lo, hi) = (frame.min[axis], frame.max[axis]);
+            r.origin[axis] = lo;
+            // Smallest power of two whose 255 steps reach the frame's top.
+            let span = (hi as f64 - lo as f64) / 255.0;
+            let mut e: i32 = if span > 0.0 {
+                libm::ceil(libm::log2(span)) as i32
+            } else {
+                -126
+            };
+            e = e.clamp(-126, 127);
+            while e < 127 && {
+                r.exp[axis] = e as i8;
+                r.decode(axis, 255) < hi
+            } {
+                e += 1;
+            }
+            r.exp[axis] = e as i8;
+            for (k, b) in boxes.iter().enumerate() {
+                let step = pow2(r.exp[axis]) as f64;
+                let qlo = libm::floor((b.min[axis] as f64 - lo as f64) / step).clamp(0.0, 255.0);
+                let qhi = libm::ceil((b.max[axis] as f64 - lo as f64) / step).clamp(0.0, 255.0);
+                let (mut qlo, mut qhi) = (qlo as u8, qhi as u8);
+                while qlo > 0 && r.decode(axis, qlo) > b.min[axis] {
+                    qlo -= 1;
+                }
+                while qhi < 255 && r.decode(axis, qhi) < b.max[axis] {
+                    qhi += 1;
+                }
+                r.lo[axis][k] = qlo;
+                r.hi[axis][k] = qhi;
+            }
+        }
+        r
+    }
+}
+
+/// A 4-wide tree of [`QuantNode`]s, borrowing its storage: the [`Wide`]
+/// collapse with 8-bit child boxes, about half the bytes per record. The
+/// looser boxes cost extra volume tests (measured in the book). Node ids are
+/// `record * 4 + slot`; record 0 holds only the root.
+///
+/// [`Wide`]: super::Wide
+///
+/// ```
+/// use bvhkit::layout::{QuantNode, QuantizedWide};
+/// use bvhkit::{Aabb, BoundingVolume, Hierarchy, Node, TopDown};
+/// use glam::Vec3;
+/// let pts: Vec<Vec3> = (0..64).map(|i| Vec3::new(i as f32 * 0.37, (i % 7) as f32, 0.0)).collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; 127];
+/// let mut idx = vec![0; 64];
+/// let bvh = TopDown::default().build(&pts, &mut nodes, &mut idx)?;
+/// let mut recs = vec![QuantNode::EMPTY; QuantizedWide::records_needed(&bvh)?];
+/// let q = QuantizedWide::from_bvh(&bvh, &mut recs)?;
+/// assert!(q.bv(0).contains_aabb(&bvh.root().bv)); // rounded outward
+/// assert_eq!(core::mem::size_of::<QuantNode>(), 64);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct QuantizedWide<'a> {
+    records: &'a [QuantNode],
+    indices: &'a [u32],
+    depth: u32,
+    nodes: u32,
+}
+
+impl<'a> QuantizedWide<'a> {
+    /// Records the collapse of `bvh` needs.
+    pub fn records_needed<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
+        wide_walk(bvh, |_, _| Ok(()))
+    }
+
+    /// Collapses and quantizes `bvh` into `out` (at least
+    /// [`records_needed`](Self::records_needed) records). A leaf of more than
+    /// 254 primitives is an [`Error::FieldOverflow`].
+    pub fn from_bvh<B: BoundingVolume>(
+        bvh: &Bvh<'a, B>,
+        out: &'a mut [QuantNode],
+    ) -> Result<Self, Error> {
+        let needed = Self::records_needed(bvh)?;
+        check_capacity(needed, out.len())?;
+        let nodes = bvh.nodes();
+        let mut count = 1u32;
+        wide_walk(bvh, |rec, slots| {
+            let mut boxes = [Aabb::EMPTY; MAX_CHILDREN];
+            for (b, s) in boxes.iter_mut().zip(slots) {
+                *b = nodes[s.node as usize].bv.aabb();
+            }
+            let mut r = QuantNode::encode(&boxes[..slots.len()]);
+            for (k, s) in slots.iter().enumerate() {
+                if s.count as usize > MAX_LEAF {
+                    return Err(Error::FieldOverflow {
+                        field: "leaf size in a quantized record",
+                        value: s.count as usize,
+                        max: MAX_LEAF,
+                    });
+                }
+                r.child[k] = s.link;
+                r.count[k] = s.count as u8;
+            }
+            count += slots.len() as u32;
+            out[rec] = r;
+            Ok(())
+        })?;
+        let records: &'a [QuantNode] = &out[..needed];
+        let mut q = QuantizedWide {
+            records,
+            indices: bvh.indices(),
+            depth: 0,
+            nodes: count - 1,
+        };
+        q.depth = measure_depth(&q)? as u32;
+        Ok(q)
+    }
+
+    /// The records; record 0 holds the root.
+    pub fn records(&self) -> &'a [QuantNode] {
+        self.records
+    }
+}
+
+impl Hierarchy for QuantizedWide<'_> {
+    type Bv = Aabb;
+    const ARITY: usize = MAX_CHILDREN;
+
+    #[inline(always)]
+    fn root(&self) -> u32 {
+        0
+    }
+
+    #[inline(always)]
+    fn bv(&self, node: u32) -> Aabb {
+        self.records[(node >> 2) as usize].slot_box((node & 3) as usize)
+    }
+
+    #[inline(always)]
+    fn content(&self, node: u32) -> Content<'_> {
+        let (rec, k) = ((node >> 2) as usize, (node & 3) as usize);
+        let r = &self.records[rec];
+        let (link, count) = (r.child[k], r.count[k]);
+        if count != 0 {
+            let first = link as usize;
+            return Content::Leaf(&self.indices[first..first + count as usize]);
+        }
+        let kids = &self.records[link as usize];
+        let base = link * 4;
+        let len = kids.count.iter().take_while(|&&c| c != UNUSED).count();
+        Content::Inner(Kids::new([base, base + 1, base + 2, base + 3], len))
+    }
+
+    fn depth(&self) -> usize {
+        self.depth as usize
+    }
+
+    fn primitive_count(&self) -> usize {
+        self.indices.len()
+    }
+
+    fn node_count(&self) -> usize {
+        self.nodes as usize
+    }
+
+    fn bytes(&self) -> usize {
+        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+    }
+}

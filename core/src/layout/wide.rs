@@ -1,0 +1,193 @@
+//! The 4-wide layout: four children's boxes side by side.
+
+use super::{check_capacity, wide_walk};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
+use crate::Error;
+use glam::Vec3;
+
+/// Marks a slot no child occupies.
+const UNUSED: u32 = u32::MAX;
+
+/// One 4-wide record: the boxes of up to four children as a structure of
+/// arrays (all four `min.x` together, and so on), so a traversal that opens
+/// the record has all four boxes in two cache lines. `count[k]` is 0 for an
+/// internal child (then `child[k]` is its record), the primitive count of a
+/// leaf child (then `child[k]` is its first index entry), or `u32::MAX` for
+/// an unused slot. 128 bytes, aligned to 64.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct WideNode {
+    min: [[f32; MAX_CHILDREN]; 3],
+    max: [[f32; MAX_CHILDREN]; 3],
+    child: [u32; MAX_CHILDREN],
+    count: [u32; MAX_CHILDREN],
+}
+
+impl WideNode {
+    /// A blank record, for initialising storage.
+    pub const EMPTY: Self = WideNode {
+        min: [[0.0; MAX_CHILDREN]; 3],
+        max: [[0.0; MAX_CHILDREN]; 3],
+        child: [0; MAX_CHILDREN],
+        count: [UNUSED; MAX_CHILDREN],
+    };
+
+    /// The box of slot `k`.
+    #[inline(always)]
+    pub fn slot_box(&self, k: usize) -> Aabb {
+        Aabb::new(
+            Vec3::new(self.min[0][k], self.min[1][k], self.min[2][k]),
+            Vec3::new(self.max[0][k], self.max[1][k], self.max[2][k]),
+        )
+    }
+
+    /// Slots in use.
+    pub fn used(&self) -> usize {
+        self.count.iter().filter(|&&c| c != UNUSED).count()
+    }
+}
+
+/// A 4-wide tree of [`WideNode`]s, borrowing its storage. Built by
+/// collapsing a binary tree: each record takes a node's two children and,
+/// while there is room, replaces the child with the largest surface area by
+/// its own two children. Node ids are `record * 4 + slot`; record 0 holds
+/// only the root. The volumes are boxes whatever the source tree's type.
+///
+/// ```
+/// use bvhkit::layout::{Wide, WideNode};
+/// use bvhkit::{Aabb, Hierarchy, Node, TopDown};
+/// use glam::Vec3;
+/// let pts: Vec<Vec3> = (0..16).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; 31];
+/// let mut idx = vec![0; 16];
+/// let bvh = TopDown::median().with_max_leaf_size(1).build(&pts, &mut nodes, &mut idx)?;
+/// let mut recs = vec![WideNode::EMPTY; Wide::records_needed(&bvh)?];
+/// let wide = Wide::from_bvh(&bvh, &mut recs)?;
+/// // Header, the root's 4 grandchildren, then their 4 children each: 16 leaves in 2 levels.
+/// assert_eq!(wide.records().len(), 6);
+/// assert_eq!(wide.depth(), 2); // root -> 4 inner -> 16 leaves
+/// assert_eq!(core::mem::size_of::<WideNode>(), 128);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Wide<'a> {
+    records: &'a [WideNode],
+    indices: &'a [u32],
+    depth: u32,
+    nodes: u32,
+}
+
+impl<'a> Wide<'a> {
+    /// Records the collapse of `bvh` needs.
+    pub fn records_needed<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
+        wide_walk(bvh, |_, _| Ok(()))
+    }
+
+    /// Collapses `bvh` into `out` (at least
+    /// [`records_needed`](Self::records_needed) records).
+    pub fn from_bvh<B: BoundingVolume>(
+        bvh: &Bvh<'a, B>,
+        out: &'a mut [WideNode],
+    ) -> Result<Self, Error> {
+        let needed = Self::records_needed(bvh)?;
+        check_capacity(needed, out.len())?;
+        let nodes = bvh.nodes();
+        let mut count = 1u32;
+        wide_walk(bvh, |rec, slots| {
+            let mut r = WideNode::EMPTY;
+            for (k, s) in slots.iter().enumerate() {
+                let b = nodes[s.node as usize].bv.aabb();
+                for axis in 0..3 {
+                    r.min[axis][k] = b.min[axis];
+                    r.max[axis][k] = b.max[axis];
+                }
+                r.child[k] = s.link;
+                r.count[k] = s.count;
+            }
+            count += slots.len() as u32;
+            out[rec] = r;
+            Ok(())
+        })?;
+        let records: &'a [WideNode] = &out[..needed];
+        let mut wide = Wide {
+            records,
+            indices: bvh.indices(),
+            depth: 0,
+            nodes: count - 1,
+        };
+        wide.depth = measure_depth(&wide)? as u32;
+        Ok(wide)
+    }
+
+    /// The records; record 0 holds the root.
+    pub fn records(&self) -> &'a [WideNode] {
+        self.records
+    }
+}
+
+/// Depth of a wide layout, by walking it (the collapse shortens paths
+/// unevenly, so the source tree's depth only bounds it).
+pub(crate) fn measure_depth<H: Hierarchy>(h: &H) -> Result<usize, Error> {
+    use crate::query::stack::Stack;
+    let mut max = 0;
+    let mut stack = Stack::<(u32, u32), { crate::tree::hierarchy::DFS_STACK }>::with(
+        (h.root(), 0),
+        crate::MAX_DEPTH,
+    );
+    while let Some((n, d)) = stack.pop() {
+        max = max.max(d);
+        if let Content::Inner(kids) = h.content(n) {
+            for &c in kids.as_slice() {
+                stack.push((c, d + 1))?;
+            }
+        }
+    }
+    Ok(max as usize)
+}
+
+impl Hierarchy for Wide<'_> {
+    type Bv = Aabb;
+    const ARITY: usize = MAX_CHILDREN;
+
+    #[inline(always)]
+    fn root(&self) -> u32 {
+        0
+    }
+
+    #[inline(always)]
+    fn bv(&self, node: u32) -> Aabb {
+        self.records[(node >> 2) as usize].slot_box((node & 3) as usize)
+    }
+
+    #[inline(always)]
+    fn content(&self, node: u32) -> Content<'_> {
+        let (rec, k) = ((node >> 2) as usize, (node & 3) as usize);
+        let r = &self.records[rec];
+        let (link, count) = (r.child[k], r.count[k]);
+        if count != 0 {
+            let first = link as usize;
+            return Content::Leaf(&self.indices[first..first + count as usize]);
+        }
+        let kids = &self.records[link as usize];
+        let base = link * 4;
+        let len = kids.count.iter().take_while(|&&c| c != UNUSED).count();
+        Content::Inner(Kids::new([base, base + 1, base + 2, base + 3], len))
+    }
+
+    fn depth(&self) -> usize {
+        self.depth as usize
+    }
+
+    fn primitive_count(&self) -> usize {
+        self.indices.len()
+    }
+
+    fn node_count(&self) -> usize {
+        self.nodes as usize
+    }
+
+    fn bytes(&self) -> usize {
+        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+    }
+}

@@ -1,0 +1,183 @@
+//! The one view every query runs on.
+//!
+//! Lecture: *efficient tree representation*. A tree can be stored in many ways
+//! (the canonical [`Bvh`], the [layouts](crate::layout)), but a query only ever
+//! asks three things of a node: its volume, whether it is a leaf (and which
+//! primitives it holds) or which children it has. [`Hierarchy`] is exactly
+//! that, so each traversal is written once and runs on every representation.
+//!
+//! A node is named by a `u32` the representation chooses: an array index for
+//! the binary layouts, a (record, slot) pair packed into the `u32` for the
+//! layouts that keep a child's volume inside its parent. One id type for all
+//! keeps the traversal stacks and the breadth-first queue plain `u32` arrays.
+
+use super::{Bvh, MAX_DEPTH};
+use crate::bv::BoundingVolume;
+use crate::Error;
+
+/// Most children a node of any representation has (the 4-wide layouts).
+pub const MAX_CHILDREN: usize = 4;
+
+/// The children of an internal node: between 2 and [`MAX_CHILDREN`] ids.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Kids {
+    ids: [u32; MAX_CHILDREN],
+    len: u8,
+}
+
+impl Kids {
+    /// Two children (every binary layout).
+    #[inline(always)]
+    pub fn two(l: u32, r: u32) -> Self {
+        Kids {
+            ids: [l, r, r, r],
+            len: 2,
+        }
+    }
+
+    /// The first `len` of `ids` (`len` is clamped to [`MAX_CHILDREN`]).
+    #[inline(always)]
+    pub fn new(ids: [u32; MAX_CHILDREN], len: usize) -> Self {
+        Kids {
+            ids,
+            len: len.min(MAX_CHILDREN) as u8,
+        }
+    }
+
+    /// The children, in the representation's order.
+    #[inline(always)]
+    pub fn as_slice(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
+}
+
+/// What a node holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Content<'a> {
+    /// A leaf: entries of the primitive index array.
+    Leaf(&'a [u32]),
+    /// An internal node and its children.
+    Inner(Kids),
+}
+
+/// A bounding volume hierarchy as queries see it: volumes, leaves, children.
+///
+/// Implemented by the canonical [`Bvh`] and by every [layout](crate::layout).
+/// The queries ([`search`](Self::search), [`cast_ray`](Self::cast_ray),
+/// [`nearest`](Self::nearest), [`Pairs`](crate::Pairs)) are written once
+/// against this trait.
+///
+/// ```
+/// use bvhkit::{Aabb, Content, Hierarchy, Node, TopDown, Triangle};
+/// use glam::Vec3;
+/// let tris: Vec<Triangle> = (0..4).map(|i| {
+///     let o = Vec3::new(i as f32 * 3.0, 0.0, 0.0);
+///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+/// }).collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(4)];
+/// let mut idx = vec![0; 4];
+/// let bvh = TopDown::default().with_max_leaf_size(1).build(&tris, &mut nodes, &mut idx)?;
+/// // Count the leaves by walking the view.
+/// fn leaves<H: Hierarchy>(h: &H, n: u32) -> usize {
+///     match h.content(n) {
+///         Content::Leaf(_) => 1,
+///         Content::Inner(kids) => kids.as_slice().iter().map(|&c| leaves(h, c)).sum(),
+///     }
+/// }
+/// assert_eq!(leaves(&bvh, Hierarchy::root(&bvh)), 4);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+pub trait Hierarchy {
+    /// The volume type of the nodes as queries see them.
+    type Bv: BoundingVolume;
+    /// Most children of one node (2 for binary layouts).
+    const ARITY: usize;
+
+    /// The root.
+    fn root(&self) -> u32;
+    /// The volume of a node (decoded, for compressed layouts).
+    fn bv(&self, node: u32) -> Self::Bv;
+    /// Leaf primitives or children of a node.
+    fn content(&self, node: u32) -> Content<'_>;
+    /// Depth of the deepest leaf (the root alone has depth 0).
+    fn depth(&self) -> usize;
+    /// Number of primitives the tree was built over.
+    fn primitive_count(&self) -> usize;
+    /// Number of logical nodes (leaves and internal nodes).
+    fn node_count(&self) -> usize;
+    /// Bytes of storage in use: node records and the primitive index array.
+    fn bytes(&self) -> usize;
+
+    /// Whether a node is a leaf.
+    #[inline(always)]
+    fn is_leaf(&self, node: u32) -> bool {
+        matches!(self.content(node), Content::Leaf(_))
+    }
+}
+
+/// Checks that a query can run on `h`: the primitive slice matches and the
+/// tree fits the fixed traversal stacks.
+pub(crate) fn check_query<H: Hierarchy + ?Sized>(h: &H, given: usize) -> Result<(), Error> {
+    if given != h.primitive_count() {
+        return Err(Error::PrimitiveCountMismatch {
+            tree: h.primitive_count(),
+            given,
+        });
+    }
+    if h.depth() > MAX_DEPTH {
+        return Err(Error::StackOverflow {
+            depth: h.depth(),
+            capacity: MAX_DEPTH,
+        });
+    }
+    Ok(())
+}
+
+/// Entries of a depth-first stack that serves every representation: at most
+/// `ARITY - 1` siblings wait per level.
+pub(crate) const DFS_STACK: usize = (MAX_CHILDREN - 1) * MAX_DEPTH + 1;
+
+impl<B: BoundingVolume> Hierarchy for Bvh<'_, B> {
+    type Bv = B;
+    const ARITY: usize = 2;
+
+    #[inline(always)]
+    fn root(&self) -> u32 {
+        0
+    }
+
+    #[inline(always)]
+    fn bv(&self, node: u32) -> B {
+        self.nodes()[node as usize].bv
+    }
+
+    #[inline(always)]
+    fn content(&self, node: u32) -> Content<'_> {
+        let n = &self.nodes()[node as usize];
+        match n.children() {
+            Some((l, r)) => Content::Inner(Kids::two(l, r)),
+            None => Content::Leaf(self.leaf_primitives(n)),
+        }
+    }
+
+    #[inline(always)]
+    fn is_leaf(&self, node: u32) -> bool {
+        self.nodes()[node as usize].is_leaf()
+    }
+
+    fn depth(&self) -> usize {
+        Bvh::depth(self)
+    }
+
+    fn primitive_count(&self) -> usize {
+        Bvh::primitive_count(self)
+    }
+
+    fn node_count(&self) -> usize {
+        Bvh::node_count(self)
+    }
+
+    fn bytes(&self) -> usize {
+        Bvh::bytes(self)
+    }
+}

@@ -1,0 +1,586 @@
+//! Every tree representation against brute force: region searches in every
+//! order, rays, nearest, and two-tree pairs under every traversal and rule
+//! (same frame and moved), for trees from several builders, including
+//! unbalanced and degenerate ones. Also: round trips, conservative
+//! quantization, record sizes, and the refusals (16-bit overflow, sparse
+//! implicit arrays, oversized quantized leaves).
+
+use bvhkit::glam::{Quat, Vec3};
+use bvhkit::layout::{
+    to_bvh, Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide,
+    WideNode,
+};
+use bvhkit::{
+    brute_force, Aabb, BoundingVolume, Bounds, Bvh, Content, Dop14, Error, Exact, Hierarchy, Node,
+    Order, Query, Ray, RayOrder, Rigid, Same, Sphere, TopDown, Triangle,
+};
+use bvhkit_tests::*;
+use proptest::prelude::*;
+
+/// Owned storage for every layout of one canonical tree.
+struct Layouts<B> {
+    implicit: Result<Vec<Slot<B>>, Error>,
+    pre32: Vec<PreNode<B, u32>>,
+    pre16: Result<Vec<PreNode<B, u16>>, Error>,
+    tri: Vec<TriNode<B>>,
+    wide: Vec<WideNode>,
+    quant: Vec<QuantNode>,
+}
+
+impl<B: BoundingVolume> Layouts<B> {
+    fn storage(bvh: &Bvh<B>) -> Self {
+        Layouts {
+            implicit: Implicit::slots_needed(bvh).map(|n| vec![Slot::EMPTY; n]),
+            pre32: vec![PreNode::EMPTY; bvh.node_count()],
+            pre16: if bvh.node_count() <= 65_536 {
+                Ok(vec![PreNode::EMPTY; bvh.node_count()])
+            } else {
+                Err(Error::InvalidConfig("too many nodes"))
+            },
+            tri: vec![TriNode::EMPTY; TriNodes::records_needed(bvh).unwrap()],
+            wide: vec![WideNode::EMPTY; Wide::records_needed(bvh).unwrap()],
+            quant: vec![QuantNode::EMPTY; QuantizedWide::records_needed(bvh).unwrap()],
+        }
+    }
+}
+
+macro_rules! each_layout {
+    ($bvh:expr, $storage:expr, |$name:ident, $view:ident| $body:block) => {{
+        let bvh = $bvh;
+        let st = $storage;
+        {
+            let $name = "canonical";
+            let $view = bvh;
+            $body
+        }
+        match st.implicit.as_mut() {
+            Ok(slots) => {
+                let $name = "implicit";
+                let $view = &Implicit::from_bvh(bvh, slots).unwrap();
+                $body
+            }
+            Err(e) => assert!(matches!(e, Error::SparseTree { .. }), "{e}"),
+        }
+        {
+            let $name = "preorder-32";
+            let $view = &Preorder::from_bvh(bvh, &mut st.pre32).unwrap();
+            $body
+        }
+        if let Ok(recs) = st.pre16.as_mut() {
+            let $name = "preorder-16";
+            let $view = &Preorder::from_bvh(bvh, recs).unwrap();
+            $body
+        }
+        {
+            let $name = "tri-node";
+            let $view = &TriNodes::from_bvh(bvh, &mut st.tri).unwrap();
+            $body
+        }
+    }};
+}
+
+macro_rules! each_box_layout {
+    ($bvh:expr, $storage:expr, |$name:ident, $view:ident| $body:block) => {{
+        let bvh = $bvh;
+        let st = $storage;
+        {
+            let $name = "wide";
+            let $view = &Wide::from_bvh(bvh, &mut st.wide).unwrap();
+            $body
+        }
+        {
+            let $name = "quantized";
+            let $view = &QuantizedWide::from_bvh(bvh, &mut st.quant).unwrap();
+            $body
+        }
+    }};
+}
+
+/// Every node's volume contains the bounds of every primitive beneath it
+/// (the conservativeness every query relies on), and each primitive is in
+/// exactly one leaf.
+fn check_contains<H: Hierarchy>(h: &H, prims: &[Triangle], name: &str) {
+    fn walk<H: Hierarchy>(h: &H, n: u32, prims: &[Triangle], seen: &mut [u32]) -> Vec<u32> {
+        let bv = h.bv(n);
+        let below = match h.content(n) {
+            Content::Leaf(here) => {
+                for &p in here {
+                    seen[p as usize] += 1;
+                }
+                here.to_vec()
+            }
+            Content::Inner(kids) => kids
+                .as_slice()
+                .iter()
+                .flat_map(|&c| walk(h, c, prims, seen))
+                .collect(),
+        };
+        for &p in &below {
+            let b = bvhkit::Primitive::bounds(&prims[p as usize]);
+            assert!(bv.contains_aabb(&b), "node {n} misses primitive {p}");
+        }
+        below
+    }
+    let mut seen = vec![0u32; prims.len()];
+    walk(h, h.root(), prims, &mut seen);
+    assert!(
+        seen.iter().all(|&s| s == 1),
+        "{name}: a primitive is lost or repeated"
+    );
+}
+
+/// Region (three orders and three region types), ray, any-hit and nearest
+/// against brute force.
+fn check_single<H: Hierarchy>(
+    h: &H,
+    prims: &[Triangle],
+    probe: (f32, f32, f32),
+    name: &str,
+) -> Result<(), TestCaseError> {
+    check_contains(h, prims, name);
+    let region = region_in(prims, probe.0.min(probe.1), probe.0.max(probe.1));
+    let ball = Sphere::new(region.center(), region.extent().length() * 0.35);
+    let dop = Dop14::fit(&[
+        region.min,
+        region.max,
+        Vec3::new(region.min.x, region.max.y, 0.0),
+    ]);
+    let mut want = Vec::new();
+    brute_force::overlapping(prims, &region, |i| want.push(i));
+    let mut queue = vec![0u32; h.breadth_first_queue()];
+    for order in [
+        Order::DepthFirst,
+        Order::Recursive,
+        Order::BreadthFirst(&mut queue),
+    ] {
+        let label = format!("{order:?}");
+        let mut got = Vec::new();
+        h.search(prims, &region, order, (), |i| got.push(i))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &want, "{} search {}", name, label);
+    }
+    let mut got = Vec::new();
+    h.overlapping(prims, &region, |i| got.push(i)).unwrap();
+    got.sort_unstable();
+    prop_assert_eq!(&got, &want, "{} overlapping", name);
+    for (what, mut got, want) in [
+        ("sphere", Vec::new(), collect(prims, &ball)),
+        ("14-dop", Vec::new(), collect(prims, &dop)),
+    ] {
+        match what {
+            "sphere" => h.overlapping(prims, &ball, |i| got.push(i)).unwrap(),
+            _ => h.overlapping(prims, &dop, |i| got.push(i)).unwrap(),
+        };
+        got.sort_unstable();
+        prop_assert_eq!(got, want, "{} {} region", name, what);
+    }
+
+    let bounds = region_in(prims, 0.0, 1.0);
+    let origin = bounds.min + bounds.extent() * (Vec3::new(probe.0, probe.1, probe.2) * 1.2 - 0.1);
+    let target = bounds.center() + bounds.extent() * (probe.2 - 0.5) * 0.3;
+    let dir = target - origin;
+    if dir.length_squared() > 0.0 && dir.is_finite() {
+        let ray = Ray::new(origin, dir, f32::INFINITY).unwrap();
+        let want = brute_force::ray_closest(prims, &ray);
+        for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+            prop_assert_eq!(
+                h.cast_ray(prims, &ray, order, ()).unwrap(),
+                want,
+                "{} ray {:?}",
+                name,
+                order
+            );
+        }
+        let any = h.ray_hits_any(prims, &ray, ()).unwrap();
+        prop_assert_eq!(any.is_some(), want.is_some(), "{} any-hit", name);
+    }
+    let near = h.nearest(prims, origin, ()).unwrap();
+    prop_assert_eq!(
+        near,
+        brute_force::nearest(prims, origin),
+        "{} nearest",
+        name
+    );
+    Ok(())
+}
+
+fn collect<R: BoundingVolume>(prims: &[Triangle], r: &R) -> Vec<u32> {
+    let mut v = Vec::new();
+    brute_force::overlapping(prims, r, |i| v.push(i));
+    v
+}
+
+/// Pairs of `h` against `other` (another representation) in every traversal,
+/// same frame and moved, bounds and exact.
+fn check_two<A: Hierarchy, H: Hierarchy<Bv = A::Bv>>(
+    ta: &A,
+    a: &[Triangle],
+    tb: &H,
+    b: &[Triangle],
+    motion: &Rigid,
+    name: &str,
+) -> Result<(), TestCaseError> {
+    check_pairs(ta, a, tb, b, &Same, Bounds, &name)?;
+    check_pairs(ta, a, tb, b, motion, Exact, &name)?;
+    check_pairs(ta, a, tb, b, motion, Bounds, &name)
+}
+
+fn run_all<B: BoundingVolume>(
+    (na, ia): (&[Node<B>], &[u32]),
+    (nb, ib): (&[Node<B>], &[u32]),
+    a: &[Triangle],
+    b: &[Triangle],
+    probe: (f32, f32, f32),
+) -> Result<(), TestCaseError> {
+    let ta = open(na, ia, a);
+    let tb = open(nb, ib, b);
+    let motion = Rigid::new(
+        Quat::from_rotation_y(0.3 + probe.0),
+        Vec3::splat(probe.1 - 0.5),
+    )
+    .unwrap();
+    let mut sa = Layouts::storage(&ta);
+    let mut sb = Layouts::storage(&tb);
+    let mut result = Ok(());
+    each_layout!(&ta, &mut sa, |name, view| {
+        if result.is_ok() {
+            result = check_single(view, a, probe, name);
+        }
+        // Each layout of A against B's canonical tree and B's same layout.
+        if result.is_ok() {
+            result = check_two(view, a, &tb, b, &motion, name);
+        }
+    });
+    result?;
+    // Layout against layout (A preorder-32 against B tri-node: mixed kinds).
+    let pa = Preorder::from_bvh(&ta, &mut sa.pre32).unwrap();
+    let qb = TriNodes::from_bvh(&tb, &mut sb.tri).unwrap();
+    check_two(&pa, a, &qb, b, &motion, "preorder x tri-node")?;
+    Ok(())
+}
+
+fn run_boxes(
+    (na, ia): (&[Node<Aabb>], &[u32]),
+    (nb, ib): (&[Node<Aabb>], &[u32]),
+    a: &[Triangle],
+    b: &[Triangle],
+    probe: (f32, f32, f32),
+) -> Result<(), TestCaseError> {
+    let ta = open(na, ia, a);
+    let tb = open(nb, ib, b);
+    let motion = Rigid::new(
+        Quat::from_rotation_x(0.7 - probe.2),
+        Vec3::splat(probe.0 - 0.5),
+    )
+    .unwrap();
+    let mut sa = Layouts::storage(&ta);
+    let mut sb = Layouts::storage(&tb);
+    let mut result = Ok(());
+    each_box_layout!(&ta, &mut sa, |name, view| {
+        if result.is_ok() {
+            result = check_single(view, a, probe, name);
+        }
+        if result.is_ok() {
+            result = check_two(view, a, &tb, b, &motion, name);
+        }
+    });
+    result?;
+    // Wide against quantized: two 4-wide trees of different record types.
+    let wa = Wide::from_bvh(&ta, &mut sa.wide).unwrap();
+    let qb = QuantizedWide::from_bvh(&tb, &mut sb.quant).unwrap();
+    check_two(&wa, a, &qb, b, &motion, "wide x quantized")
+}
+
+fn built<B: BoundingVolume>(cfg: &TopDown, prims: &[Triangle]) -> Result<Built<B>, TestCaseError> {
+    build::<B, _>(cfg, prims).map_err(|e| TestCaseError::fail(format!("{e}")))
+}
+
+proptest! {
+    #![proptest_config(proptest_config(24))]
+
+    #[test]
+    fn every_layout_answers_like_brute_force(
+        cfg in any_top_down(),
+        a in scene(40),
+        b in scene(40),
+        probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
+    ) {
+        let (na, ia, _) = built::<Aabb>(&cfg, &a)?;
+        let (nb, ib, _) = built::<Aabb>(&cfg, &b)?;
+        run_all((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+        run_boxes((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+        let (na, ia, _) = built::<Sphere>(&cfg, &a)?;
+        let (nb, ib, _) = built::<Sphere>(&cfg, &b)?;
+        run_all((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+        let (na, ia, _) = built::<Dop14>(&cfg, &a)?;
+        let (nb, ib, _) = built::<Dop14>(&cfg, &b)?;
+        run_all((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+    }
+
+    #[test]
+    fn bottom_up_trees_in_every_layout(
+        a in scene(40),
+        b in scene(40),
+        probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
+    ) {
+        use bvhkit::build::{BottomUp, MergeMetric, Method};
+        let cfg = BottomUp { method: Method::Ploc { radius: 2 }, metric: MergeMetric::SurfaceArea };
+        let (na, ia, _) = build_bottom_up::<Aabb, _>(&cfg, &a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        let (nb, ib, _) = build_bottom_up::<Aabb, _>(&cfg, &b).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        run_all((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+        run_boxes((&na, &ia), (&nb, &ib), &a, &b, probe)?;
+    }
+
+    #[test]
+    fn binary_layouts_round_trip_to_the_same_tree(cfg in any_top_down(), a in scene(60)) {
+        let (na, ia, _) = built::<Sphere>(&cfg, &a)?;
+        let t = open(&na, &ia, &a);
+        let mut st = Layouts::storage(&t);
+        let mut back = vec![Node::EMPTY; t.node_count()];
+        let mut back_idx = vec![0; a.len()];
+        each_layout!(&t, &mut st, |name, view| {
+            let r = to_bvh(view, &mut back, &mut back_idx).unwrap();
+            assert!(same_tree(&t, 0, &r, 0), "{name} round trip changed the tree");
+            assert_eq!(r.depth(), t.depth(), "{name}");
+            open(r.nodes(), r.indices(), &a);
+        });
+    }
+
+    #[test]
+    fn quantized_boxes_contain_the_exact_boxes(
+        boxes in prop::collection::vec(
+            ((-1e6f32..1e6, -1e6f32..1e6, -1e6f32..1e6), (0.0f32..1e3, 0.0f32..1e-2, 0.0f32..1e6), 0i32..20),
+            1..5,
+        )
+    ) {
+        let boxes: Vec<Aabb> = boxes
+            .into_iter()
+            .map(|((x, y, z), (w, h, d), scale)| {
+                let s = (2.0f32).powi(scale - 10);
+                let lo = Vec3::new(x, y, z) * s;
+                Aabb::new(lo, lo + Vec3::new(w, h, d) * s)
+            })
+            .collect();
+        let q = QuantNode::encode(&boxes);
+        for (k, b) in boxes.iter().enumerate() {
+            let d = q.slot_box(k);
+            prop_assert!(d.contains_aabb(b), "slot {} decoded {:?} misses {:?}", k, d, b);
+        }
+    }
+}
+
+/// Structural equality of two trees given as views: same volumes, same
+/// leaves, same child order.
+fn same_tree<X: Hierarchy, Y: Hierarchy<Bv = X::Bv>>(x: &X, i: u32, y: &Y, j: u32) -> bool
+where
+    X::Bv: PartialEq,
+{
+    if x.bv(i) != y.bv(j) {
+        return false;
+    }
+    match (x.content(i), y.content(j)) {
+        (Content::Leaf(p), Content::Leaf(q)) => p == q,
+        (Content::Inner(k), Content::Inner(l)) => {
+            k.as_slice().len() == l.as_slice().len()
+                && k.as_slice()
+                    .iter()
+                    .zip(l.as_slice())
+                    .all(|(&c, &d)| same_tree(x, c, y, d))
+        }
+        _ => false,
+    }
+}
+
+fn line(n: usize, spacing: impl Fn(usize) -> f32) -> Vec<Vec3> {
+    (0..n).map(|i| Vec3::new(spacing(i), 0.0, 0.0)).collect()
+}
+
+#[test]
+fn record_sizes_are_as_documented() {
+    use core::mem::size_of;
+    assert_eq!(size_of::<Node<Aabb>>(), 32);
+    assert_eq!(size_of::<Slot<Aabb>>(), 28);
+    assert_eq!(size_of::<Slot<Sphere>>(), 20);
+    assert_eq!(size_of::<PreNode<Aabb, u32>>(), 32);
+    assert_eq!(size_of::<PreNode<Aabb, u16>>(), 28);
+    assert_eq!(size_of::<PreNode<Sphere, u16>>(), 20);
+    assert_eq!(size_of::<TriNode<Aabb>>(), 92);
+    assert_eq!(size_of::<WideNode>(), 128);
+    assert_eq!(std::mem::align_of::<WideNode>(), 64);
+    assert_eq!(size_of::<QuantNode>(), 64);
+}
+
+#[test]
+fn sixteen_bit_links_refuse_big_trees_and_accept_the_largest_that_fits() {
+    // 32 768 points, one per leaf: 65 535 nodes, the last index 65 534 fits.
+    let pts = line(32_768, |i| i as f32);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(pts.len())];
+    let mut idx = vec![0; pts.len()];
+    let t = TopDown::median()
+        .with_max_leaf_size(1)
+        .build(&pts, &mut nodes, &mut idx)
+        .unwrap();
+    let mut recs = vec![PreNode::<Aabb, u16>::EMPTY; t.node_count()];
+    let pre = Preorder::from_bvh(&t, &mut recs).unwrap();
+    assert_eq!(
+        pre.overlapping(
+            &pts,
+            &Aabb::new(Vec3::splat(-0.5), Vec3::new(2.5, 1.0, 1.0)),
+            |_| {}
+        ),
+        Ok(3)
+    );
+    // 32 769 points: 65 537 nodes, index 65 536 does not fit.
+    let pts = line(32_769, |i| i as f32);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(pts.len())];
+    let mut idx = vec![0; pts.len()];
+    let t = TopDown::median()
+        .with_max_leaf_size(1)
+        .build(&pts, &mut nodes, &mut idx)
+        .unwrap();
+    let mut recs = vec![PreNode::<Aabb, u16>::EMPTY; t.node_count()];
+    let err = Preorder::from_bvh(&t, &mut recs).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::FieldOverflow {
+                value: 65_536,
+                max: 65_535,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    // Nothing was written before the refusal.
+    assert!(recs.iter().all(|r| *r == PreNode::EMPTY));
+}
+
+#[test]
+fn implicit_array_refuses_a_chain_and_reports_its_waste() {
+    // Points at 2^i: every spatial-median split cuts off one point, a chain.
+    let pts = line(30, |i| (2.0f32).powi(i as i32));
+    let cfg = TopDown {
+        split: bvhkit::SplitPoint::SpatialMedian,
+        ..TopDown::default()
+    }
+    .with_max_leaf_size(1);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(pts.len())];
+    let mut idx = vec![0; pts.len()];
+    let t = cfg.build(&pts, &mut nodes, &mut idx).unwrap();
+    assert!(t.depth() >= 20, "depth {}", t.depth());
+    let err = Implicit::slots_needed(&t).unwrap_err();
+    assert!(matches!(err, Error::SparseTree { nodes: 59, .. }), "{err}");
+    // A balanced tree of 24 points fits with the waste reported.
+    let pts = line(24, |i| i as f32);
+    let t = TopDown::median()
+        .with_max_leaf_size(1)
+        .build(&pts, &mut nodes, &mut idx[..24])
+        .unwrap();
+    let mut slots = vec![Slot::EMPTY; Implicit::slots_needed(&t).unwrap()];
+    let im = Implicit::from_bvh(&t, &mut slots).unwrap();
+    assert_eq!(im.slots().len(), 63); // depth 5
+    assert_eq!(im.unused(), 63 - 47);
+}
+
+#[test]
+fn too_small_storage_and_oversized_quantized_leaves_are_errors() {
+    let pts = line(300, |i| (i % 3) as f32);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(pts.len())];
+    let mut idx = vec![0; pts.len()];
+    let t = TopDown::default()
+        .with_max_leaf_size(300)
+        .build(&pts, &mut nodes, &mut idx)
+        .unwrap();
+    assert_eq!(t.node_count(), 1);
+    let mut recs = vec![QuantNode::EMPTY; 4];
+    let err = QuantizedWide::from_bvh(&t, &mut recs).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::FieldOverflow {
+                value: 300,
+                max: 254,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    // The float wide layout takes it.
+    let mut wide = vec![WideNode::EMPTY; 1];
+    assert!(Wide::from_bvh(&t, &mut wide).is_ok());
+
+    let t = TopDown::default()
+        .with_max_leaf_size(1)
+        .build(&pts, &mut nodes, &mut idx)
+        .unwrap();
+    let mut few = vec![TriNode::EMPTY; 3];
+    assert!(matches!(
+        TriNodes::from_bvh(&t, &mut few),
+        Err(Error::NodeCapacity { .. })
+    ));
+    let mut few = vec![PreNode::<Aabb, u32>::EMPTY; 3];
+    assert!(matches!(
+        Preorder::from_bvh(&t, &mut few),
+        Err(Error::NodeCapacity { .. })
+    ));
+}
+
+#[test]
+fn quantized_boxes_are_looser_but_every_query_still_matches() {
+    let (a, b) = (bumpy(48, 0.0), bumpy(48, 0.3));
+    let (na, ia, _) = build::<Aabb, _>(&TopDown::sah(), &a).unwrap();
+    let (nb, ib, _) = build::<Aabb, _>(&TopDown::sah(), &b).unwrap();
+    let (ta, tb) = (open(&na, &ia, &a), open(&nb, &ib, &b));
+    let mut sa = Layouts::storage(&ta);
+    let q = QuantizedWide::from_bvh(&ta, &mut sa.quant).unwrap();
+    let mut wide = vec![WideNode::EMPTY; Wide::records_needed(&ta).unwrap()];
+    let w = Wide::from_bvh(&ta, &mut wide).unwrap();
+    // Same structure, looser boxes: never smaller, somewhere larger.
+    let (mut looser, mut total) = (0, 0);
+    for id in 0..(4 * w.records().len() as u32) {
+        let (rec, k) = ((id / 4) as usize, (id % 4) as usize);
+        if w.records()[rec].used() <= k {
+            continue;
+        }
+        let (exact, coarse) = (w.bv(id), q.bv(id));
+        assert!(coarse.contains_aabb(&exact));
+        looser += (coarse != exact) as usize;
+        total += 1;
+    }
+    assert!(looser > total / 2, "{looser} of {total} boxes grew");
+    let mut counts = [bvhkit::Counts::default(); 2];
+    let mut found = [0; 2];
+    for (k, n) in [
+        bvhkit::Pairs::new(&w, &a, &tb, &b)
+            .counted(&mut counts[0])
+            .count(),
+        bvhkit::Pairs::new(&q, &a, &tb, &b)
+            .counted(&mut counts[1])
+            .count(),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        found[k] = n.unwrap();
+    }
+    assert_eq!(found[0], found[1]);
+    assert_eq!(found[0], brute_force::pairs(&a, &b, |_, _| {}));
+    assert!(counts[1].bv_tests >= counts[0].bv_tests);
+}
+
+/// A wavy height field of `2 n^2` triangles, raised by `lift`.
+fn bumpy(n: usize, lift: f32) -> Vec<Triangle> {
+    let h = |x: usize, y: usize| {
+        let (fx, fy) = (x as f32 * 0.37, y as f32 * 0.29);
+        Vec3::new(x as f32, y as f32, fx.sin() * fy.cos() * 2.0 + lift)
+    };
+    let mut out = Vec::new();
+    for y in 0..n {
+        for x in 0..n {
+            out.push(Triangle::new(h(x, y), h(x + 1, y), h(x, y + 1)));
+            out.push(Triangle::new(h(x + 1, y), h(x + 1, y + 1), h(x, y + 1)));
+        }
+    }
+    out
+}
