@@ -69,12 +69,17 @@ struct Scene<'s> {
     runs: usize,
 }
 
+/// Answers and timings of one layout.
+struct Measured {
+    pairs_ms: f64,
+    pair_bv_tests: u64,
+    pairs: usize,
+    rays_ms: f64,
+    hits: Vec<Option<u32>>,
+}
+
 /// Answers of one layout: pair count and Nv, ray hits, timings.
-fn run<H: Hierarchy<Bv = Aabb>>(
-    s: &Scene<'_>,
-    ta: &H,
-    tb: &H,
-) -> Result<(f64, u64, usize, f64, Vec<Option<u32>>), Error> {
+fn run<H: Hierarchy<Bv = Aabb>>(s: &Scene<'_>, ta: &H, tb: &H) -> Result<Measured, Error> {
     let mut counts = Counts::default();
     let n = Pairs::new(ta, s.a, tb, s.b).counted(&mut counts).count()?;
     let (t_pairs, _) = median_time(s.runs, || Pairs::new(ta, s.a, tb, s.b).count());
@@ -90,13 +95,13 @@ fn run<H: Hierarchy<Bv = Aabb>>(
     };
     let hits = cast()?;
     let (t_rays, _) = median_time(s.runs, cast);
-    Ok((
-        t_pairs.as_secs_f64() * 1e3,
-        counts.bv_tests,
-        n,
-        t_rays.as_secs_f64() * 1e3,
+    Ok(Measured {
+        pairs_ms: t_pairs.as_secs_f64() * 1e3,
+        pair_bv_tests: counts.bv_tests,
+        pairs: n,
+        rays_ms: t_rays.as_secs_f64() * 1e3,
         hits,
-    ))
+    })
 }
 
 /// Measures every representation on `a` against `b` with `builder` (AABB).
@@ -125,7 +130,7 @@ pub fn measure(
                record_bytes: usize,
                records: usize,
                convert_ms: f64,
-               r: &(f64, u64, usize, f64, Vec<Option<u32>>)| {
+               r: &Measured| {
         let total = record_bytes * records + 4 * a.len();
         LayoutRow {
             layout,
@@ -135,10 +140,10 @@ pub fn measure(
             bytes_per_triangle: total as f64 / a.len() as f64,
             build_ms: build_ms + convert_ms,
             convert_ms,
-            pairs_ms: r.0,
-            pair_bv_tests: r.1,
-            rays_ms: r.3,
-            same_answers: r.2 == base.2 && r.4 == base.4,
+            pairs_ms: r.pairs_ms,
+            pair_bv_tests: r.pair_bv_tests,
+            rays_ms: r.rays_ms,
+            same_answers: r.pairs == base.pairs && r.hits == base.hits,
             refused: None,
         }
     };
