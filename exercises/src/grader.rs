@@ -30,7 +30,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 10] = [
+pub const EXERCISES: [(u32, &str); 13] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -41,6 +41,9 @@ pub const EXERCISES: [(u32, &str); 10] = [
     (8, "bottom-up construction: greedy merges"),
     (9, "refit after motion"),
     (10, "insertion: the cost of a candidate sibling"),
+    (11, "implicit array: index arithmetic"),
+    (12, "preorder layout: convert a tree"),
+    (13, "quantize a box conservatively"),
 ];
 
 /// A score for one exercise.
@@ -583,7 +586,189 @@ pub fn checks() -> Vec<Check> {
                 })
             },
         },
+        // Exercise 11
+        Check {
+            exercise: 11,
+            name: "children of the first entries",
+            points: 3,
+            run: |e| {
+                e.implicit_children(0) == (1, 2)
+                    && e.implicit_children(1) == (3, 4)
+                    && e.implicit_children(4) == (9, 10)
+                    && e.implicit_children(1000) == (2001, 2002)
+            },
+        },
+        Check {
+            exercise: 11,
+            name: "the parent inverts both children; the root has none",
+            points: 4,
+            run: |e| {
+                e.implicit_parent(0).is_none()
+                    && (0..5000).all(|i| {
+                        let (l, r) = e.implicit_children(i);
+                        e.implicit_parent(l) == Some(i) && e.implicit_parent(r) == Some(i)
+                    })
+            },
+        },
+        Check {
+            exercise: 11,
+            name: "array length of a complete tree of each depth",
+            points: 3,
+            run: |e| (0..30).all(|d: u32| e.implicit_len(d) == (1usize << (d + 1)) - 1),
+        },
+        // Exercise 12
+        Check {
+            exercise: 12,
+            name: "a seven-node tree",
+            points: 3,
+            run: |e| {
+                let pts: Vec<Vec3> = (0..4).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+                let mut nodes = vec![Node::<Aabb>::EMPTY; 7];
+                let mut idx = vec![0; 4];
+                let Ok(t) = TopDown::median()
+                    .with_max_leaf_size(1)
+                    .build(&pts, &mut nodes, &mut idx)
+                else {
+                    return false;
+                };
+                let got = e.to_preorder(&t);
+                let links: Vec<Option<u32>> = got.iter().map(|x| x.1).collect();
+                let n = t.nodes();
+                let (l, r) = n[0].children().unwrap_or((0, 0));
+                let (ll, lr) = n[l as usize].children().unwrap_or((0, 0));
+                let (rl, rr) = n[r as usize].children().unwrap_or((0, 0));
+                let order = [0, l, ll, lr, r, rl, rr];
+                links == [Some(4), Some(3), None, None, Some(6), None, None]
+                    && got.iter().zip(order).all(|(x, i)| x.0 == n[i as usize].bv)
+            },
+        },
+        Check {
+            exercise: 12,
+            name: "agrees with the library's Preorder on random trees",
+            points: 4,
+            run: |e| {
+                use bvhkit::layout::{PreNode, Preorder};
+                [(40usize, 1u32, 5u64), (200, 4, 6), (97, 2, 7)]
+                    .iter()
+                    .all(|&(n, leaf, seed)| {
+                        let prims = boxes(n, seed, Vec3::ZERO);
+                        let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(n)];
+                        let mut idx = vec![0; n];
+                        let Ok(t) = TopDown::sah()
+                            .with_max_leaf_size(leaf)
+                            .build(&prims, &mut nodes, &mut idx)
+                        else {
+                            return false;
+                        };
+                        let mut recs = vec![PreNode::<Aabb, u32>::EMPTY; t.node_count()];
+                        let Ok(pre) = Preorder::from_bvh(&t, &mut recs) else {
+                            return false;
+                        };
+                        let want: Vec<(Aabb, Option<u32>)> = pre
+                            .records()
+                            .iter()
+                            .map(|r| (r.bv, r.right().map(|i| i as u32)))
+                            .collect();
+                        e.to_preorder(&t) == want
+                    })
+            },
+        },
+        Check {
+            exercise: 12,
+            name: "a tree that is a single leaf",
+            points: 3,
+            run: |e| {
+                let prims = [b([1.0; 3], [2.0; 3])];
+                let mut nodes = [Node::<Aabb>::EMPTY; 1];
+                let mut idx = [0; 1];
+                let Ok(t) = TopDown::default().build(&prims, &mut nodes, &mut idx) else {
+                    return false;
+                };
+                e.to_preorder(&t) == [(prims[0], None)]
+            },
+        },
+        // Exercise 13
+        Check {
+            exercise: 13,
+            name: "the decoded box contains the child (grid-line and rounding cases)",
+            points: 4,
+            run: |e| {
+                quantize_cases()
+                    .iter()
+                    .all(|(p, c)| quantized_contains(e, p, c))
+            },
+        },
+        Check {
+            exercise: 13,
+            name: "as tight as the grid allows",
+            points: 3,
+            run: |e| {
+                quantize_cases().iter().all(|(p, c)| {
+                    let (lo, hi) = e.quantize(p, c);
+                    quantized_contains(e, p, c)
+                        && (0..3).all(|k| {
+                            (lo[k] == 255 || crate::dequantize(p, k, lo[k] + 1) > c.min[k])
+                                && (hi[k] == 0 || crate::dequantize(p, k, hi[k] - 1) < c.max[k])
+                        })
+                })
+            },
+        },
+        Check {
+            exercise: 13,
+            name: "a child equal to its parent, and flat boxes",
+            points: 3,
+            run: |e| {
+                let p = b([-3.0, 1.0, 5.0], [7.0, 1.0, 9.5]);
+                let flat = b([0.0, 1.0, 6.0], [4.0, 1.0, 6.0]);
+                e.quantize(&p, &p).0[0] == 0
+                    && e.quantize(&p, &p).1[0] == 255
+                    && quantized_contains(e, &p, &p)
+                    && quantized_contains(e, &p, &flat)
+            },
+        },
     ]
+}
+
+/// Whether the quantized child decodes to a box containing it.
+fn quantized_contains(e: &dyn Exercises, p: &Aabb, c: &Aabb) -> bool {
+    let (lo, hi) = e.quantize(p, c);
+    (0..3).all(|k| {
+        crate::dequantize(p, k, lo[k]) <= c.min[k] && crate::dequantize(p, k, hi[k]) >= c.max[k]
+    })
+}
+
+/// Parent/child pairs for exercise 13: random children, children whose faces
+/// lie on grid lines or one `f32` step beside them, far from the origin.
+fn quantize_cases() -> Vec<(Aabb, Aabb)> {
+    let mut r = Rng(0x51ed_270b_9a3c_4e5f);
+    let mut out = Vec::new();
+    for i in 0..400 {
+        let off = if i % 3 == 0 {
+            Vec3::new(1.0e5, -7.3e3, 0.1)
+        } else {
+            Vec3::ZERO
+        };
+        let p = Aabb::fit(&[r.point(20.0, off), r.point(20.0, off)]);
+        let mut c = Aabb::fit(&[
+            p.min + (p.max - p.min) * Vec3::new(r.next(), r.next(), r.next()),
+            p.min + (p.max - p.min) * Vec3::new(r.next(), r.next(), r.next()),
+        ]);
+        if i % 2 == 1 {
+            // Snap the faces to grid lines, then nudge by one ulp either way.
+            for k in 0..3 {
+                let q = (r.next() * 254.0) as u8;
+                let g = crate::dequantize(&p, k, q);
+                let nudge = match i % 4 {
+                    1 => g,
+                    _ => f32::from_bits(g.to_bits().wrapping_sub(1)).max(p.min[k]),
+                };
+                c.min[k] = nudge.min(c.max[k]);
+                c.max[k] = c.max[k].max(c.min[k]);
+            }
+        }
+        out.push((p, c));
+    }
+    out
 }
 
 /// Replays a merge sequence: whether every merge joins two live clusters and
@@ -881,7 +1066,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 120/120 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 150/150 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -1078,6 +1263,78 @@ mod tests {
                 _ => Reference.insertion_cost(sibling, ancestors, new),
             }
         }
+        fn implicit_children(&self, i: usize) -> (usize, usize) {
+            match self.0 {
+                20 => (2 * i, 2 * i + 1), // the one-based formula on a zero-based array
+                _ => Reference.implicit_children(i),
+            }
+        }
+        fn implicit_parent(&self, i: usize) -> Option<usize> {
+            match self.0 {
+                21 => (i > 0).then_some(i / 2),
+                _ => Reference.implicit_parent(i),
+            }
+        }
+        fn implicit_len(&self, depth: u32) -> usize {
+            match self.0 {
+                22 => 1 << depth, // only the last level
+                _ => Reference.implicit_len(depth),
+            }
+        }
+        fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
+            let nodes = tree.nodes();
+            match self.0 {
+                // The canonical array's order and its right-child index, unchanged.
+                23 => nodes
+                    .iter()
+                    .map(|n| (n.bv, n.children().map(|(_, r)| r)))
+                    .collect(),
+                // Preorder, but the link points at the left child (the next entry).
+                24 => Reference
+                    .to_preorder(tree)
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| (x.0, x.1.map(|_| i as u32 + 1)))
+                    .collect(),
+                _ => Reference.to_preorder(tree),
+            }
+        }
+        fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
+            let grid =
+                |k: usize, x: f32| (x - parent.min[k]) / ((parent.max[k] - parent.min[k]) / 255.0);
+            match self.0 {
+                // Round to the nearest grid line: can cut into the child.
+                25 => {
+                    let (mut lo, mut hi) = ([0u8; 3], [0u8; 3]);
+                    for k in 0..3 {
+                        lo[k] = grid(k, child.min[k]).round().clamp(0.0, 255.0) as u8;
+                        hi[k] = grid(k, child.max[k]).round().clamp(0.0, 255.0) as u8;
+                    }
+                    (lo, hi)
+                }
+                // floor / ceil in f32, never checked against the decoder.
+                26 => {
+                    let (mut lo, mut hi) = ([0u8; 3], [0u8; 3]);
+                    for k in 0..3 {
+                        let (a, b) = (grid(k, child.min[k]), grid(k, child.max[k]));
+                        lo[k] = if a.is_finite() {
+                            a.floor().clamp(0.0, 255.0) as u8
+                        } else {
+                            0
+                        };
+                        hi[k] = if b.is_finite() {
+                            b.ceil().clamp(0.0, 255.0) as u8
+                        } else {
+                            255
+                        };
+                    }
+                    (lo, hi)
+                }
+                // Always the whole parent: safe, but useless.
+                27 => ([0; 3], [255; 3]),
+                _ => Reference.quantize(parent, child),
+            }
+        }
     }
 
     #[test]
@@ -1102,6 +1359,14 @@ mod tests {
             (17, 9),
             (18, 10),
             (19, 10),
+            (20, 11),
+            (21, 11),
+            (22, 11),
+            (23, 12),
+            (24, 12),
+            (25, 13),
+            (26, 13),
+            (27, 13),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(

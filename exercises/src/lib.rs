@@ -93,4 +93,38 @@ pub trait Exercises {
     /// parent joining `sibling` and `new`, plus how much each ancestor's
     /// surface area grows when it must also contain `new`.
     fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64;
+
+    /// Exercise 11a: in the implicit array of a complete binary tree (root at
+    /// 0, level by level), the indices of the two children of entry `i`.
+    fn implicit_children(&self, i: usize) -> (usize, usize);
+    /// Exercise 11b: the index of the parent of entry `i` (`None` for the root).
+    fn implicit_parent(&self, i: usize) -> Option<usize>;
+    /// Exercise 11c: how many entries the implicit array of a tree of depth
+    /// `depth` needs (the root alone has depth 0).
+    fn implicit_len(&self, depth: u32) -> usize;
+
+    /// Exercise 12: the tree in preorder. Return one entry per node, in
+    /// preorder (a node, then its whole first subtree, then its second): the
+    /// node's box, and for an internal node the position *in your output* of
+    /// its second (right) child; `None` for a leaf. The first child is always
+    /// the next entry.
+    fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)>;
+
+    /// Exercise 13: quantize `child` (inside `parent`) to 8-bit grid
+    /// coordinates `(lo, hi)` per axis, conservatively: with
+    /// [`dequantize`]`(parent, k, q)` as the decoder, `dequantize(lo[k]) <=
+    /// child.min[k]` and `dequantize(hi[k]) >= child.max[k]`, and as tight as
+    /// possible (the largest such `lo`, the smallest such `hi`).
+    fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]);
+}
+
+/// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is
+/// `parent.min[k]` and line 255 is `parent.max[k]`, both exactly; line `q`
+/// between them is `min + q * (extent / 255)`, rounded as `f32` arithmetic
+/// rounds.
+pub fn dequantize(parent: &Aabb, k: usize, q: u8) -> f32 {
+    match q {
+        255 => parent.max[k],
+        _ => parent.min[k] + q as f32 * ((parent.max[k] - parent.min[k]) / 255.0),
+    }
 }

@@ -162,4 +162,59 @@ impl Exercises for Reference {
                 .map(|a| area(&a.union(new)) - area(a))
                 .sum::<f64>()
     }
+
+    fn implicit_children(&self, i: usize) -> (usize, usize) {
+        (2 * i + 1, 2 * i + 2)
+    }
+
+    fn implicit_parent(&self, i: usize) -> Option<usize> {
+        (i > 0).then(|| (i - 1) / 2)
+    }
+
+    fn implicit_len(&self, depth: u32) -> usize {
+        (1usize << (depth + 1)) - 1
+    }
+
+    fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
+        use bvhkit::layout::{PreNode, Preorder};
+        let mut records = vec![PreNode::<Aabb, u32>::EMPTY; tree.node_count()];
+        match Preorder::from_bvh(tree, &mut records) {
+            Ok(pre) => pre
+                .records()
+                .iter()
+                .map(|r| (r.bv, r.right().map(|i| i as u32)))
+                .collect(),
+            Err(e) => panic!("the reference conversion failed: {e}"),
+        }
+    }
+
+    fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
+        let (mut lo, mut hi) = ([0u8; 3], [255u8; 3]);
+        for k in 0..3 {
+            let step = (parent.max[k] as f64 - parent.min[k] as f64) / 255.0;
+            let (a, b) = if step > 0.0 {
+                (
+                    ((child.min[k] as f64 - parent.min[k] as f64) / step).floor(),
+                    ((child.max[k] as f64 - parent.min[k] as f64) / step).ceil(),
+                )
+            } else {
+                (0.0, 0.0)
+            };
+            let (mut l, mut h) = (a.clamp(0.0, 255.0) as u8, b.clamp(0.0, 255.0) as u8);
+            while l > 0 && crate::dequantize(parent, k, l) > child.min[k] {
+                l -= 1;
+            }
+            while l < 255 && crate::dequantize(parent, k, l + 1) <= child.min[k] {
+                l += 1;
+            }
+            while h < 255 && crate::dequantize(parent, k, h) < child.max[k] {
+                h += 1;
+            }
+            while h > 0 && crate::dequantize(parent, k, h - 1) >= child.max[k] {
+                h -= 1;
+            }
+            (lo[k], hi[k]) = (l, h);
+        }
+        (lo, hi)
+    }
 }

@@ -119,4 +119,39 @@ impl Exercises for Student {
         let _ = (sibling, ancestors, new);
         todo!("exercise 10")
     }
+
+    /// Hint: level by level, entry `i` has children `2i + 1` and `2i + 2`.
+    fn implicit_children(&self, i: usize) -> (usize, usize) {
+        let _ = i;
+        todo!("exercise 11a")
+    }
+
+    /// Hint: invert the children formula; both children must give the same parent.
+    fn implicit_parent(&self, i: usize) -> Option<usize> {
+        let _ = i;
+        todo!("exercise 11b")
+    }
+
+    /// Hint: a complete tree of depth `d` has `d + 1` full levels.
+    fn implicit_len(&self, depth: u32) -> usize {
+        let _ = depth;
+        todo!("exercise 11c")
+    }
+
+    /// Hint: depth-first with a stack of node indices (push the right child
+    /// first so the left one is emitted next). The right child's output
+    /// position is known only once the whole left subtree is out: remember
+    /// which entry to patch. `tree.nodes()[i].children()` gives the children.
+    fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
+        let _ = tree;
+        todo!("exercise 12")
+    }
+
+    /// Hint: estimate with `floor` / `ceil` of `(x - min) / step`, then check
+    /// the estimate with `dequantize` itself and step it down (for `lo`) or up
+    /// (for `hi`) while it is on the wrong side: rounding can put it there.
+    fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
+        let _ = (parent, child);
+        todo!("exercise 13")
+    }
 }

@@ -33,6 +33,8 @@ pub struct LayoutRow {
     pub pair_bv_tests: u64,
     /// Median ms of casting all rays at A (closest hit, depth-first).
     pub rays_ms: f64,
+    /// Pairs the query found.
+    pub pairs: usize,
     /// Whether pairs and ray hits equal the canonical tree's.
     pub same_answers: bool,
     /// Why the layout was refused, if it was (then the numbers are zero).
@@ -143,6 +145,7 @@ pub fn measure(
             pairs_ms: r.pairs_ms,
             pair_bv_tests: r.pair_bv_tests,
             rays_ms: r.rays_ms,
+            pairs: r.pairs,
             same_answers: r.pairs == base.pairs && r.hits == base.hits,
             refused: None,
         }
@@ -158,6 +161,7 @@ pub fn measure(
         pairs_ms: 0.0,
         pair_bv_tests: 0,
         rays_ms: 0.0,
+        pairs: 0,
         same_answers: true,
         refused: Some(e.to_string()),
     };

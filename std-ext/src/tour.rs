@@ -32,6 +32,8 @@ pub struct TourReport {
     pub motion: Vec<crate::motion::MotionRow>,
     /// The main builders on other kinds of generated scenes.
     pub other_scenes: Vec<(String, Vec<Row>)>,
+    /// Every tree representation of the SAH tree: bytes, times, answers.
+    pub layouts: Vec<crate::layouts::LayoutRow>,
     /// Queries whose answer equalled the brute-force reference.
     pub verified: usize,
     /// Queries run.
@@ -371,19 +373,27 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
             rows,
         ));
     }
+    progress("tree representations");
+    let layouts = crate::layouts::measure(&a, &b, &TopDown::sah(), 2_000, opts.runs)?;
     progress("refit versus rebuild");
     let motion = crate::motion::refit_vs_rebuild(opts.subdivisions, 8, 0.15, opts.runs)?;
     let rows = strategies
         .iter()
         .chain(&volumes)
         .chain(other_scenes.iter().flat_map(|(_, r)| r));
-    let queries = rows.clone().count() + descent_rules.len() + motion.len();
+    let laid_out = layouts.iter().filter(|l| l.refused.is_none());
+    let queries =
+        rows.clone().count() + descent_rules.len() + motion.len() + laid_out.clone().count();
+    let layouts_ok = laid_out
+        .filter(|l| l.same_answers && l.pairs == reference.len())
+        .count();
     let verified = rows.filter(|r| r.matches).count()
         + descent_rules
             .iter()
             .filter(|r| r.intersecting_pairs == reference_contacts)
             .count()
-        + motion.iter().filter(|m| m.same_pairs).count();
+        + motion.iter().filter(|m| m.same_pairs).count()
+        + layouts_ok;
     Ok(TourReport {
         scene: SceneInfo {
             name: format!(
@@ -406,6 +416,7 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
         descent_rules,
         motion,
         other_scenes,
+        layouts,
         verified,
         queries,
     })
@@ -516,6 +527,10 @@ pub fn render(r: &TourReport) -> String {
           versus a tree rebuilt each frame (SAH cost, times, and the pair query against a static rock;\n\
           ok = the refitted tree finds exactly the pairs of the rebuilt one, itself checked above):\n";
     s += &crate::motion::render(&r.motion);
+    s += "\nTree representations of tree A (sah, aabb): memory, conversion, pair query against\n\
+          B in the same layout, 2 000 rays (same answers = pairs and hits equal the canonical tree's,\n\
+          and the pairs equal brute force):\n";
+    s += &crate::layouts::render(&r.layouts);
     s += &format!(
         "\nverified: {}/{} queries match brute force\n",
         r.verified, r.queries
