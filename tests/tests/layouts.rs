@@ -348,6 +348,47 @@ proptest! {
     }
 
     #[test]
+    fn wide_layouts_convert_back_to_valid_equivalent_trees(cfg in any_top_down(), a in scene(60), b in scene(30)) {
+        let (na, ia, _) = built::<Aabb>(&cfg, &a)?;
+        let (nb, ib, _) = built::<Aabb>(&cfg, &b)?;
+        let (t, tb) = (open(&na, &ia, &a), open(&nb, &ib, &b));
+        let mut st = Layouts::storage(&t);
+        let mut want = Vec::new();
+        brute_force::pairs(&a, &b, |i, j| want.push((i, j)));
+        want.sort_unstable();
+        let mut back = vec![Node::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut back_idx = vec![0; a.len()];
+        each_box_layout!(&t, &mut st, |name, view| {
+            let r = to_bvh(view, &mut back, &mut back_idx).unwrap();
+            // Validated (structure, containment, every primitive once) and
+            // answering like brute force.
+            let r = open(r.nodes(), r.indices(), &a);
+            let mut got = Vec::new();
+            bvhkit::Pairs::new(&r, &a, &tb, &b).for_each(|i, j| got.push((i, j))).unwrap();
+            got.sort_unstable();
+            prop_assert_eq!(&got, &want, "{} -> canonical", name);
+        });
+    }
+
+    #[test]
+    fn conversions_between_layouts_go_through_the_canonical_tree(cfg in any_top_down(), a in scene(60)) {
+        // preorder -> canonical -> tri-node equals canonical -> tri-node.
+        let (na, ia, _) = built::<Dop14>(&cfg, &a)?;
+        let t = open(&na, &ia, &a);
+        let mut pre = vec![PreNode::<Dop14, u32>::EMPTY; t.node_count()];
+        let pre = Preorder::from_bvh(&t, &mut pre).unwrap();
+        let mut back = vec![Node::EMPTY; t.node_count()];
+        let mut back_idx = vec![0; a.len()];
+        let mid = to_bvh(&pre, &mut back, &mut back_idx).unwrap();
+        let mut t1 = vec![TriNode::EMPTY; TriNodes::records_needed(&t).unwrap()];
+        let mut t2 = vec![TriNode::EMPTY; TriNodes::records_needed(&mid).unwrap()];
+        let direct = TriNodes::from_bvh(&t, &mut t1).unwrap();
+        let via = TriNodes::from_bvh(&mid, &mut t2).unwrap();
+        prop_assert!(same_tree(&direct, 0, &via, 0));
+        prop_assert_eq!(direct.records().len(), via.records().len());
+    }
+
+    #[test]
     fn quantized_boxes_contain_the_exact_boxes(
         boxes in prop::collection::vec(
             ((-1e6f32..1e6, -1e6f32..1e6, -1e6f32..1e6), (0.0f32..1e3, 0.0f32..1e-2, 0.0f32..1e6), 0i32..20),

@@ -54,7 +54,8 @@ pub(crate) fn check_capacity(needed: usize, available: usize) -> Result<(), Erro
 /// `h.primitive_count()` entries). A binary layout comes back as exactly the
 /// tree it was made from (node order aside). A node with more than two
 /// children becomes a small binary subtree over them, whose inner volumes
-/// enclose the children's.
+/// enclose the children's; a quantized parent box that does not contain a
+/// child's (each level is rounded on its own grid) is grown to contain it.
 ///
 /// ```
 /// use bvhkit::layout::{to_bvh, PreNode, Preorder};
@@ -170,6 +171,22 @@ pub fn to_bvh<'o, H: Hierarchy>(
     }
     if next_index != n {
         return Err(Error::InvalidTree("leaves do not hold every primitive"));
+    }
+    // A canonical node must contain its children. Layouts that round boxes
+    // per level (quantized) only promise that each node contains its
+    // primitives, so grow parents where needed, children first (they come
+    // after their parent). Exact layouts pass through unchanged.
+    for i in (0..next_slot).rev() {
+        if let Some((l, r)) = nodes[i].children() {
+            let mut bv = nodes[i].bv;
+            for c in [l, r] {
+                let child = nodes[c as usize].bv;
+                if !bv.contains(&child) {
+                    bv = enclose(&bv, &child);
+                }
+            }
+            nodes[i].bv = bv;
+        }
     }
     let (nodes, indices) = (&nodes[..next_slot], &indices[..n]);
     Ok(Bvh::from_built(nodes, indices, depth))
