@@ -390,27 +390,19 @@ where
                 capacity,
             });
         }
-        let (pa, pb, frame) = (self.pa, self.pb, &self.frame);
-        let mut answer = self.answer;
-        // Leaves visit B's primitives in the outer loop: place each one once
-        // per leaf pair, not once per primitive pair.
-        let mut placed: Option<(u32, Q)> = None;
         let mut walk = Walk {
             a: self.a,
             b: self.b,
             frame: &self.frame,
             with_boxes: !X::POINTWISE,
             tally: self.tally,
-            leaf: |p: u32, q: u32| {
-                let placed = match &mut placed {
-                    Some((last, moved)) if *last == q => &*moved,
-                    slot => &slot.insert((q, frame.place(&pb[q as usize]))).1,
-                };
-                if answer.accept(&pa[p as usize], placed) {
-                    sink(p, q)
-                } else {
-                    ControlFlow::Continue(())
-                }
+            leaf: PrimitivePairs {
+                pa: self.pa,
+                pb: self.pb,
+                frame: &self.frame,
+                answer: self.answer,
+                sink: &mut sink,
+                placed: None,
             },
         };
         match &self.traversal {
@@ -472,6 +464,45 @@ where
     Pairs::new(a, prims_a, b, prims_b).descent(rule).for_each(f)
 }
 
+/// The primitive-pair step of every traversal: place B's primitive in A's
+/// frame (once per run of the same primitive), decide, report. A struct with
+/// an always-inlined method rather than a closure, so that it is inlined
+/// into the leaf loop (a closure here was not, and cost a call per pair).
+struct PrimitivePairs<'q, P, Q, F, X, S> {
+    pa: &'q [P],
+    pb: &'q [Q],
+    frame: &'q F,
+    answer: X,
+    sink: S,
+    /// Leaves visit B's primitives in the outer loop: the last one placed.
+    placed: Option<(u32, Q)>,
+}
+
+/// Decides one primitive pair.
+trait PairStep {
+    fn pair(&mut self, p: u32, q: u32) -> Flow;
+}
+
+impl<P, Q, F, X, S> PairStep for PrimitivePairs<'_, P, Q, F, X, S>
+where
+    F: Place<Q>,
+    X: Answer<P, Q>,
+    S: FnMut(u32, u32) -> Flow,
+{
+    #[inline(always)]
+    fn pair(&mut self, p: u32, q: u32) -> Flow {
+        let placed = match &mut self.placed {
+            Some((last, moved)) if *last == q => &*moved,
+            slot => &slot.insert((q, self.frame.place(&self.pb[q as usize]))).1,
+        };
+        if self.answer.accept(&self.pa[p as usize], placed) {
+            (self.sink)(p, q)
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+}
+
 /// The machinery shared by every traversal: node access across frames,
 /// counted tests, and the leaf-pair callback.
 struct Walk<'q, A, H, F, T, L> {
@@ -496,7 +527,7 @@ where
     H: Hierarchy<Bv = A::Bv>,
     F: Frame,
     T: Tally,
-    L: FnMut(u32, u32) -> Flow,
+    L: PairStep,
 {
     /// B's node volume in A's frame.
     #[inline(always)]
@@ -544,12 +575,12 @@ where
     }
 
     /// Every primitive pair of two leaves.
-    #[inline]
+    #[inline(always)]
     fn leaves(&mut self, la: &[u32], lb: &[u32]) -> Flow {
         for &q in lb {
             for &p in la {
                 self.tally.prim_tests(1);
-                (self.leaf)(p, q)?;
+                self.leaf.pair(p, q)?;
             }
         }
         ControlFlow::Continue(())
@@ -557,7 +588,7 @@ where
 
     /// Both nodes internal: the rule's choice, and B's children in A's frame
     /// if the rule needed them.
-    #[inline]
+    #[inline(always)]
     fn decide<D: DescentRule>(
         &mut self,
         rule: &D,
@@ -668,61 +699,115 @@ where
         if self.test(&xa, &yb) {
             push!(ra, rb, 0);
         }
+        let none = Kids::two(0, 0);
         while top > 0 {
             top -= 1;
             let (i, j, depth) = stack[top];
-            let (open, ka, kb, known, yb) = match (a.content(i), b.content(j)) {
-                (Content::Leaf(la), Content::Leaf(lb)) => {
+            // Leaf tests first: cheap, and most pops are not leaf pairs.
+            let (a_leaf, b_leaf) = (a.is_leaf(i), b.is_leaf(j));
+            if a_leaf && b_leaf {
+                if let (Content::Leaf(la), Content::Leaf(lb)) = (a.content(i), b.content(j)) {
                     if self.leaves(la, lb).is_break() {
                         return Ok(ControlFlow::Break(()));
                     }
+                }
+                continue;
+            }
+            let kids = |c: Content<'_>| match c {
+                Content::Inner(k) => k,
+                Content::Leaf(_) => none,
+            };
+            let ka = &if a_leaf { none } else { kids(a.content(i)) };
+            let kb = &if b_leaf { none } else { kids(b.content(j)) };
+            // B's node in A's frame, when the step needs it.
+            let mut yb = None;
+            let open = match (a_leaf, b_leaf) {
+                (false, true) => Open::A,
+                (true, false) => Open::B,
+                _ if rule.wants_children() => {
+                    // The informed rules see the children's volumes; fetch
+                    // them once and use them for the pushes too.
+                    let y = self.b_bv(j);
+                    let x = a.bv(i);
+                    let (open, known) = self.decide(rule, (&x, ka), (&y, kb), depth);
+                    let (ids, vols, n) = known.unwrap_or(([0; MAX_CHILDREN], [y; MAX_CHILDREN], 0));
+                    match open {
+                        Open::A => {
+                            for &c in ka.of_arity(A::ARITY).iter().rev() {
+                                let xc = a.bv(c);
+                                if self.test(&xc, &y) {
+                                    push!(c, j, depth + 1);
+                                }
+                            }
+                        }
+                        Open::B => {
+                            for k in (0..n).rev() {
+                                if self.test(&x, &vols[k]) {
+                                    push!(i, ids[k], depth + 1);
+                                }
+                            }
+                        }
+                        Open::Both => {
+                            for &u in ka.of_arity(A::ARITY).iter().rev() {
+                                let xu = a.bv(u);
+                                for k in (0..n).rev() {
+                                    if self.test(&xu, &vols[k]) {
+                                        push!(u, ids[k], depth + 1);
+                                    }
+                                }
+                            }
+                        }
+                    }
                     continue;
                 }
-                (Content::Inner(ka), Content::Leaf(_)) => (Open::A, Some(ka), None, None, None),
-                (Content::Leaf(_), Content::Inner(kb)) => (Open::B, None, Some(kb), None, None),
-                (Content::Inner(ka), Content::Inner(kb)) => {
-                    let (xa, yb) = (a.bv(i), self.b_bv(j));
-                    let (open, known) = self.decide(rule, (&xa, &ka), (&yb, &kb), depth);
-                    (open, Some(ka), Some(kb), known, Some(yb))
+                _ => {
+                    let y = self.b_bv(j);
+                    let x = a.bv(i);
+                    yb = Some(y);
+                    self.decide(rule, (&x, ka), (&y, kb), depth).0
                 }
             };
             match open {
                 Open::A => {
-                    let yb = match yb {
+                    let y = match yb {
                         Some(y) => y,
                         None => self.b_bv(j),
                     };
-                    let ka = ka.unwrap_or(Kids::two(0, 0));
-                    for &c in ka.as_slice().iter().rev() {
+                    for &c in ka.of_arity(A::ARITY).iter().rev() {
                         let xc = a.bv(c);
-                        if self.test(&xc, &yb) {
+                        if self.test(&xc, &y) {
                             push!(c, j, depth + 1);
                         }
                     }
                 }
                 Open::B => {
-                    let xa = a.bv(i);
-                    let (ids, vols, n) = match known {
-                        Some(c) => c,
-                        None => self.b_children(&kb.unwrap_or(Kids::two(0, 0))),
-                    };
-                    for k in (0..n).rev() {
-                        if self.test(&xa, &vols[k]) {
-                            push!(i, ids[k], depth + 1);
+                    let x = a.bv(i);
+                    for &c in kb.of_arity(H::ARITY).iter().rev() {
+                        let yc = self.b_bv(c);
+                        if self.test(&x, &yc) {
+                            push!(i, c, depth + 1);
                         }
                     }
                 }
-                Open::Both => {
-                    let ka = ka.unwrap_or(Kids::two(0, 0));
-                    let (ids, vols, n) = match known {
-                        Some(c) => c,
-                        None => self.b_children(&kb.unwrap_or(Kids::two(0, 0))),
-                    };
-                    for &u in ka.as_slice().iter().rev() {
+                Open::Both if F::MOVES => {
+                    // Move B's children once per step, not once per child of A.
+                    let (ids, vols, n) = self.b_children(kb);
+                    for &u in ka.of_arity(A::ARITY).iter().rev() {
                         let xu = a.bv(u);
                         for k in (0..n).rev() {
                             if self.test(&xu, &vols[k]) {
                                 push!(u, ids[k], depth + 1);
+                            }
+                        }
+                    }
+                }
+                Open::Both => {
+                    for &u in ka.of_arity(A::ARITY).iter().rev() {
+                        let xu = a.bv(u);
+                        for &v in kb.of_arity(H::ARITY).iter().rev() {
+                            let yv = b.bv(v);
+                            if self.test(&xu, &yv) {
+                                push!(u, v, depth + 1);
                             }
                         }
                     }

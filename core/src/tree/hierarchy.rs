@@ -49,6 +49,18 @@ impl Kids {
     pub fn as_slice(&self) -> &[u32] {
         &self.ids[..self.len as usize]
     }
+
+    /// The children of a node of a tree of this arity: for binary trees a
+    /// slice of constant length 2, which lets the compiler unroll the loops
+    /// over it (measurably faster on the pair query's hot path).
+    #[inline(always)]
+    pub fn of_arity(&self, arity: usize) -> &[u32] {
+        if arity == 2 {
+            &self.ids[..2]
+        } else {
+            self.as_slice()
+        }
+    }
 }
 
 /// What a node holds.
