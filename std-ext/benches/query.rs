@@ -9,6 +9,7 @@
 //! sides count them. Before timing, the bench checks that all of them find the
 //! same number.
 
+use bvhkit::layout::{PreNode, Preorder, Wide, WideNode};
 use bvhkit::{Aabb, Counts, Descent, PairTraversal, Pairs, Primitive, Rigid, TopDown, Triangle};
 use bvhkit_std::{scene, OwnedBvh};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -71,6 +72,48 @@ fn bench(c: &mut Criterion) {
                     Pairs::new(ta, &a, tb, &b).traversal(PairTraversal::Recursive(Descent::Larger));
                 black_box(q.count().unwrap())
             })
+        });
+    }
+    // The same trees in the preorder and 4-wide layouts.
+    let (mut p1a, mut p1b) = (
+        vec![PreNode::<Aabb, u32>::EMPTY; t1a.node_count()],
+        vec![PreNode::<Aabb, u32>::EMPTY; t1b.node_count()],
+    );
+    let (p1a, p1b) = (
+        Preorder::from_bvh(&t1a, &mut p1a).unwrap(),
+        Preorder::from_bvh(&t1b, &mut p1b).unwrap(),
+    );
+    let wide = |t: &bvhkit::Bvh<Aabb>| vec![WideNode::EMPTY; Wide::records_needed(t).unwrap()];
+    let (mut w1a, mut w1b, mut w4a, mut w4b) = (wide(&t1a), wide(&t1b), wide(&t4a), wide(&t4b));
+    let (w1a, w1b) = (
+        Wide::from_bvh(&t1a, &mut w1a).unwrap(),
+        Wide::from_bvh(&t1b, &mut w1b).unwrap(),
+    );
+    let (w4a, w4b) = (
+        Wide::from_bvh(&t4a, &mut w4a).unwrap(),
+        Wide::from_bvh(&t4b, &mut w4b).unwrap(),
+    );
+    let rule = Descent::Simultaneous;
+    assert_eq!(
+        Pairs::new(&w1a, &a, &w1b, &b)
+            .descent(rule)
+            .count()
+            .unwrap(),
+        want
+    );
+    g.bench_function("bvhkit-leaf1-preorder-stack-simultaneous", |bch| {
+        bch.iter(|| {
+            black_box(
+                Pairs::new(&p1a, &a, &p1b, &b)
+                    .descent(rule)
+                    .count()
+                    .unwrap(),
+            )
+        })
+    });
+    for (name, ta, tb) in [("leaf1", &w1a, &w1b), ("leaf4", &w4a, &w4b)] {
+        g.bench_function(format!("bvhkit-{name}-wide-stack-simultaneous"), |bch| {
+            bch.iter(|| black_box(Pairs::new(ta, &a, tb, &b).descent(rule).count().unwrap()))
         });
     }
     // Counting is free when the tally is `()`, cheap when it is `Counts`.

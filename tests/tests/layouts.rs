@@ -625,3 +625,37 @@ fn bumpy(n: usize, lift: f32) -> Vec<Triangle> {
     }
     out
 }
+
+/// PITFALLS: trees of 1-3 leaves (far apart and touching) and coordinates
+/// up to 1e30, in every layout, against brute force.
+#[test]
+fn tiny_trees_and_huge_coordinates_in_every_layout() {
+    let tri = |o: Vec3, s: f32| Triangle::new(o, o + Vec3::X * s, o + Vec3::Y * s);
+    for scale in [1.0f32, 1.0e28] {
+        for n in 1..=3usize {
+            for gap in [0.0f32, 0.5, 100.0] {
+                let a: Vec<Triangle> = (0..n)
+                    .map(|i| tri(Vec3::new(i as f32 * 1.5, 0.0, 0.0) * scale, scale))
+                    .collect();
+                let b: Vec<Triangle> = (0..n)
+                    .map(|i| {
+                        tri(
+                            Vec3::new(i as f32 * 1.5 + gap + 0.2, 0.3, 0.0) * scale,
+                            scale,
+                        )
+                    })
+                    .collect();
+                let cfg = TopDown::default().with_max_leaf_size(1);
+                let (na, ia, _) = build::<Aabb, _>(&cfg, &a).unwrap();
+                let (nb, ib, _) = build::<Aabb, _>(&cfg, &b).unwrap();
+                let probe = (0.3, 0.6, 0.5);
+                let ctx = format!("n {n}, gap {gap}, scale {scale:e}");
+                run_all((&na, &ia), (&nb, &ib), &a, &b, probe).expect(&ctx);
+                run_boxes((&na, &ia), (&nb, &ib), &a, &b, probe).expect(&ctx);
+                let (na, ia, _) = build::<Sphere, _>(&cfg, &a).unwrap();
+                let (nb, ib, _) = build::<Sphere, _>(&cfg, &b).unwrap();
+                run_all((&na, &ia), (&nb, &ib), &a, &b, probe).expect(&ctx);
+            }
+        }
+    }
+}

@@ -237,6 +237,9 @@ pub(crate) struct SlotSource {
     pub link: u32,
     /// Primitive count (leaf) or 0 (inner).
     pub count: u32,
+    /// Slots of the child record (inner), so a query learns a node's
+    /// number of children without touching the child record; 0 for a leaf.
+    pub child_slots: u32,
 }
 
 /// The walk shared by the 4-wide layouts. Record 0 is a header whose only
@@ -260,6 +263,7 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
             node: 0,
             link: 0,
             count: 0,
+            child_slots: 0,
         }; MAX_CHILDREN];
         for (slot, &c) in slots.iter_mut().zip(&group[..len]) {
             let node = &nodes[c as usize];
@@ -268,6 +272,7 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
                     node: c,
                     link: node.first,
                     count: node.count,
+                    child_slots: 0,
                 }
             } else {
                 let kids = collapse(bvh, c);
@@ -284,6 +289,7 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
                     node: c,
                     link: next - 1,
                     count: 0,
+                    child_slots: kids.1 as u32,
                 }
             };
         }

@@ -18,13 +18,15 @@ const MAX_LEAF: usize = UNUSED as usize - 1;
 /// union of the children's boxes, and each child's box is rounded *outward*
 /// to grid lines (checked by decoding it again), so the decoded box always
 /// contains the exact one: quantized bounds are looser, never wrong.
-/// `count[k]` is 0 for an internal child, 1..=254 for a leaf, 255 unused.
+/// `count[k]` is 0 for an internal child, 1..=254 for a leaf, 255 unused;
+/// bits `2k, 2k+1` of `kids` hold an internal child's number of children
+/// minus 2, so a query learns it without touching the child's record.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct QuantNode {
     origin: [f32; 3],
     exp: [i8; 3],
-    _pad: u8,
+    kids: u8,
     lo: [[u8; MAX_CHILDREN]; 3],
     hi: [[u8; MAX_CHILDREN]; 3],
     child: [u32; MAX_CHILDREN],
@@ -42,7 +44,7 @@ impl QuantNode {
     pub const EMPTY: Self = QuantNode {
         origin: [0.0; 3],
         exp: [0; 3],
-        _pad: 0,
+        kids: 0,
         lo: [[0; MAX_CHILDREN]; 3],
         hi: [[0; MAX_CHILDREN]; 3],
         child: [0; MAX_CHILDREN],
@@ -180,6 +182,9 @@ impl<'a> QuantizedWide<'a> {
                 }
                 r.child[k] = s.link;
                 r.count[k] = s.count as u8;
+                if s.count == 0 {
+                    r.kids |= (s.child_slots.saturating_sub(2) as u8 & 3) << (2 * k);
+                }
             }
             count += slots.len() as u32;
             out[rec] = r;
@@ -225,10 +230,14 @@ impl Hierarchy for QuantizedWide<'_> {
             let first = link as usize;
             return Content::Leaf(&self.indices[first..first + count as usize]);
         }
-        let kids = &self.records[link as usize];
         let base = link * 4;
-        let len = kids.count.iter().take_while(|&&c| c != UNUSED).count();
+        let len = 2 + ((r.kids >> (2 * k)) & 3) as usize;
         Content::Inner(Kids::new([base, base + 1, base + 2, base + 3], len))
+    }
+
+    #[inline(always)]
+    fn is_leaf(&self, node: u32) -> bool {
+        self.records[(node >> 2) as usize].count[(node & 3) as usize] != 0
     }
 
     fn depth(&self) -> usize {

@@ -2,24 +2,25 @@
 
 use super::{check_capacity, wide_walk};
 use crate::bv::{Aabb, BoundingVolume};
-use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
+use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
 use glam::Vec3;
 
 /// Marks a slot no child occupies.
 const UNUSED: u32 = u32::MAX;
+/// Flag of an internal child; the low bits hold its number of children.
+const INNER: u32 = 1 << 31;
 
 /// One 4-wide record: the boxes of up to four children as a structure of
 /// arrays (all four `min.x` together, and so on), so a traversal that opens
-/// the record has all four boxes in two cache lines. `count[k]` is 0 for an
-/// internal child (then `child[k]` is its record), the primitive count of a
-/// leaf child (then `child[k]` is its first index entry), or `u32::MAX` for
-/// an unused slot. 128 bytes, aligned to 64.
+/// the record has all four boxes in two cache lines. `count[k]` is
+/// `2^31 + c` for an internal child with `c` children (then `child[k]` is its
+/// record), the primitive count of a leaf child (then `child[k]` is its first
+/// index entry), or `u32::MAX` for an unused slot. 128 bytes, aligned to 64.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct WideNode {
-    min: [[f32; MAX_CHILDREN]; 3],
-    max: [[f32; MAX_CHILDREN]; 3],
+    boxes: Boxes4,
     child: [u32; MAX_CHILDREN],
     count: [u32; MAX_CHILDREN],
 }
@@ -27,8 +28,10 @@ pub struct WideNode {
 impl WideNode {
     /// A blank record, for initialising storage.
     pub const EMPTY: Self = WideNode {
-        min: [[0.0; MAX_CHILDREN]; 3],
-        max: [[0.0; MAX_CHILDREN]; 3],
+        boxes: Boxes4 {
+            min: [[0.0; MAX_CHILDREN]; 3],
+            max: [[0.0; MAX_CHILDREN]; 3],
+        },
         child: [0; MAX_CHILDREN],
         count: [UNUSED; MAX_CHILDREN],
     };
@@ -36,9 +39,10 @@ impl WideNode {
     /// The box of slot `k`.
     #[inline(always)]
     pub fn slot_box(&self, k: usize) -> Aabb {
+        let b = &self.boxes;
         Aabb::new(
-            Vec3::new(self.min[0][k], self.min[1][k], self.min[2][k]),
-            Vec3::new(self.max[0][k], self.max[1][k], self.max[2][k]),
+            Vec3::new(b.min[0][k], b.min[1][k], b.min[2][k]),
+            Vec3::new(b.max[0][k], b.max[1][k], b.max[2][k]),
         )
     }
 
@@ -99,11 +103,15 @@ impl<'a> Wide<'a> {
             for (k, s) in slots.iter().enumerate() {
                 let b = nodes[s.node as usize].bv.aabb();
                 for axis in 0..3 {
-                    r.min[axis][k] = b.min[axis];
-                    r.max[axis][k] = b.max[axis];
+                    r.boxes.min[axis][k] = b.min[axis];
+                    r.boxes.max[axis][k] = b.max[axis];
                 }
                 r.child[k] = s.link;
-                r.count[k] = s.count;
+                r.count[k] = if s.count == 0 {
+                    INNER | s.child_slots
+                } else {
+                    s.count
+                };
             }
             count += slots.len() as u32;
             out[rec] = r;
@@ -165,14 +173,41 @@ impl Hierarchy for Wide<'_> {
         let (rec, k) = ((node >> 2) as usize, (node & 3) as usize);
         let r = &self.records[rec];
         let (link, count) = (r.child[k], r.count[k]);
-        if count != 0 {
+        if count & INNER == 0 {
             let first = link as usize;
             return Content::Leaf(&self.indices[first..first + count as usize]);
         }
-        let kids = &self.records[link as usize];
         let base = link * 4;
-        let len = kids.count.iter().take_while(|&&c| c != UNUSED).count();
+        let len = (count & !INNER) as usize;
         Content::Inner(Kids::new([base, base + 1, base + 2, base + 3], len))
+    }
+
+    #[inline(always)]
+    fn is_leaf(&self, node: u32) -> bool {
+        self.records[(node >> 2) as usize].count[(node & 3) as usize] & INNER == 0
+    }
+
+    /// The four boxes of the record against one box in a few 4-lane
+    /// comparisons (the same closed-interval test as [`Aabb::overlaps`]).
+    #[inline(always)]
+    fn children_overlapping(&self, kids: &Kids, other: &Aabb) -> u32 {
+        let ids = kids.as_slice();
+        let Some(&first) = ids.first() else { return 0 };
+        let r = &self.records[(first >> 2) as usize].boxes;
+        let mut hit = glam::BVec4A::TRUE;
+        for axis in 0..3 {
+            let lo = glam::Vec4::from_array(r.min[axis]);
+            let hi = glam::Vec4::from_array(r.max[axis]);
+            hit &= lo.cmple(glam::Vec4::splat(other.max[axis]));
+            hit &= hi.cmpge(glam::Vec4::splat(other.min[axis]));
+        }
+        hit.bitmask() & ((1 << ids.len()) - 1)
+    }
+
+    #[inline(always)]
+    fn children_boxes(&self, kids: &Kids) -> Option<&Boxes4> {
+        let first = *kids.as_slice().first()?;
+        Some(&self.records[(first >> 2) as usize].boxes)
     }
 
     fn depth(&self) -> usize {

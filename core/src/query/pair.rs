@@ -773,10 +773,23 @@ where
                         Some(y) => y,
                         None => self.b_bv(j),
                     };
-                    for &c in ka.of_arity(A::ARITY).iter().rev() {
-                        let xc = a.bv(c);
-                        if self.test(&xc, &y) {
+                    let kids = ka.of_arity(A::ARITY);
+                    self.tally.bv_tests(kids.len() as u32);
+                    let mask = a.children_overlapping(ka, &y);
+                    for (k, &c) in kids.iter().enumerate().rev() {
+                        if mask & (1 << k) != 0 {
                             push!(c, j, depth + 1);
+                        }
+                    }
+                }
+                Open::B if !F::MOVES => {
+                    let x = a.bv(i);
+                    let kids = kb.of_arity(H::ARITY);
+                    self.tally.bv_tests(kids.len() as u32);
+                    let mask = b.children_overlapping(kb, &x);
+                    for (k, &c) in kids.iter().enumerate().rev() {
+                        if mask & (1 << k) != 0 {
+                            push!(i, c, depth + 1);
                         }
                     }
                 }
@@ -802,11 +815,13 @@ where
                     }
                 }
                 Open::Both => {
+                    let kids = kb.of_arity(H::ARITY);
                     for &u in ka.of_arity(A::ARITY).iter().rev() {
                         let xu = a.bv(u);
-                        for &v in kb.of_arity(H::ARITY).iter().rev() {
-                            let yv = b.bv(v);
-                            if self.test(&xu, &yv) {
+                        self.tally.bv_tests(kids.len() as u32);
+                        let mask = b.children_overlapping(kb, &xu);
+                        for (k, &v) in kids.iter().enumerate().rev() {
+                            if mask & (1 << k) != 0 {
                                 push!(u, v, depth + 1);
                             }
                         }

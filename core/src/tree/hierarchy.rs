@@ -63,6 +63,19 @@ impl Kids {
     }
 }
 
+/// The boxes of up to four sibling nodes side by side (a structure of
+/// arrays: the four `min.x` together, then the four `min.y`, ...), as a wide
+/// layout stores them. Lets a query test one ray or box against four boxes
+/// with 4-lane arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub struct Boxes4 {
+    /// Lower corners: `min[axis][child]`.
+    pub min: [[f32; MAX_CHILDREN]; 3],
+    /// Upper corners: `max[axis][child]`.
+    pub max: [[f32; MAX_CHILDREN]; 3],
+}
+
 /// What a node holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Content<'a> {
@@ -124,6 +137,29 @@ pub trait Hierarchy {
     #[inline(always)]
     fn is_leaf(&self, node: u32) -> bool {
         matches!(self.content(node), Content::Leaf(_))
+    }
+
+    /// The children's boxes side by side, if the layout stores them so. They
+    /// must equal `self.bv(c).aabb()` for each child `c` (slots past the
+    /// children are ignored). The default, `None`, makes queries fetch them
+    /// one by one.
+    #[inline(always)]
+    fn children_boxes(&self, kids: &Kids) -> Option<&Boxes4> {
+        let _ = kids;
+        None
+    }
+
+    /// Which of `kids` (the children of one node) have a volume overlapping
+    /// `other`: bit `k` for `kids.as_slice()[k]`. The default tests them one
+    /// by one; a layout that stores the children side by side tests them at
+    /// once. Must equal the one-by-one answer.
+    #[inline(always)]
+    fn children_overlapping(&self, kids: &Kids, other: &Self::Bv) -> u32 {
+        let mut mask = 0;
+        for (k, &c) in kids.of_arity(Self::ARITY).iter().enumerate() {
+            mask |= (self.bv(c).overlaps(other) as u32) << k;
+        }
+        mask
     }
 }
 

@@ -12,7 +12,7 @@
 pub(crate) mod hierarchy;
 mod validate;
 
-pub use hierarchy::{Content, Hierarchy, Kids, MAX_CHILDREN};
+pub use hierarchy::{Boxes4, Content, Hierarchy, Kids, MAX_CHILDREN};
 
 use crate::bv::BoundingVolume;
 use crate::primitive::Primitive;
