@@ -633,11 +633,22 @@ where
             return ControlFlow::Continue(());
         }
         let (a, b) = (self.a, self.b);
-        let (open, known) = match (a.content(i), b.content(j)) {
-            (Content::Leaf(la), Content::Leaf(lb)) => return self.leaves(la, lb),
-            (Content::Inner(ka), Content::Leaf(_)) => ((Open::A, ka, None), None),
-            (Content::Leaf(_), Content::Inner(kb)) => ((Open::B, kb, None), None),
-            (Content::Inner(ka), Content::Inner(kb)) => {
+        let (a_leaf, b_leaf) = (a.is_leaf(i), b.is_leaf(j));
+        let kids = |c: Content<'_>| match c {
+            Content::Inner(k) => k,
+            Content::Leaf(_) => Kids::two(0, 0),
+        };
+        let (open, known) = match (a_leaf, b_leaf) {
+            (true, true) => {
+                return match (a.content(i), b.content(j)) {
+                    (Content::Leaf(la), Content::Leaf(lb)) => self.leaves(la, lb),
+                    _ => ControlFlow::Continue(()),
+                };
+            }
+            (false, true) => ((Open::A, kids(a.content(i)), None), None),
+            (true, false) => ((Open::B, kids(b.content(j)), None), None),
+            (false, false) => {
+                let (ka, kb) = (kids(a.content(i)), kids(b.content(j)));
                 let (open, known) = self.decide(rule, (&xa, &ka), (yb, &kb), depth);
                 ((open, ka, Some(kb)), known)
             }
@@ -649,7 +660,7 @@ where
         };
         match open {
             Open::A => {
-                for &c in first.as_slice() {
+                for &c in first.of_arity(A::ARITY) {
                     self.recurse(rule, c, j, yb, depth + 1)?;
                 }
                 ControlFlow::Continue(())
@@ -665,7 +676,7 @@ where
             Open::Both => {
                 let kb = second.unwrap_or(first);
                 let (ids, vols, n) = b_kids(self, &kb);
-                for &u in first.as_slice() {
+                for &u in first.of_arity(A::ARITY) {
                     for k in 0..n {
                         self.recurse(rule, u, ids[k], &vols[k], depth + 1)?;
                     }
