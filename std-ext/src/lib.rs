@@ -11,6 +11,7 @@ pub mod layouts;
 pub mod mesh;
 pub mod motion;
 pub mod scene;
+pub mod stats;
 pub mod tour;
 
 use bvhkit::{BoundingVolume, Bvh, Error, Node, Primitive, TopDown};

@@ -1,8 +1,17 @@
 //! Loading triangle meshes from files.
 //!
-//! Wavefront OBJ through the `tobj` crate (polygons are triangulated). Every
-//! error names the file; indices are checked against the vertex count and
-//! coordinates must be finite, so a hostile file gives an error, not a panic.
+//! | format | how |
+//! |---|---|
+//! | Wavefront OBJ | the `tobj` crate |
+//! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count |
+//! | PLY, ASCII and binary | the `ply-rs` crate |
+//! | OFF | by hand (a small text format no maintained crate reads) |
+//!
+//! Polygons are triangulated as fans. Every error names the file (and the
+//! line, where one is known); indices are checked against the vertex count,
+//! coordinates must be finite, and nothing is allocated from a count a header
+//! claims before the data behind it has been read, so a hostile file gives an
+//! error, not a panic or an out-of-memory abort.
 
 use bvhkit::glam::Vec3;
 use bvhkit::Triangle;
@@ -32,18 +41,272 @@ pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
         path: path.to_path_buf(),
         reason,
     };
-    match path
+    let tris = match path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
+        .as_deref()
     {
-        Some(ext) if ext == "obj" => {}
+        Some("obj") => load_obj(path, &fail)?,
+        Some("stl") => load_stl(path, &fail)?,
+        Some("ply") => load_ply(path, &fail)?,
+        Some("off") => load_off(path, &fail)?,
         _ => {
             return Err(fail(
-                "unsupported format (this version reads .obj; more formats are planned)".into(),
+                "unsupported format (bvhkit reads .obj, .stl, .ply and .off)".into(),
             ))
         }
+    };
+    if tris.is_empty() {
+        return Err(fail("no triangles in the file".into()));
     }
+    Ok(tris)
+}
+
+type Fail<'a> = &'a dyn Fn(String) -> MeshError;
+
+/// A placement for a loaded mesh: scale about the origin, then rotate by
+/// Euler angles (degrees, about x, then y, then z), then translate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    /// Uniform scale factor.
+    pub scale: f32,
+    /// Rotation angles in degrees about x, y and z, applied in that order.
+    pub rotate_deg: Vec3,
+    /// Translation.
+    pub translate: Vec3,
+}
+
+impl Default for Placement {
+    fn default() -> Self {
+        Placement {
+            scale: 1.0,
+            rotate_deg: Vec3::ZERO,
+            translate: Vec3::ZERO,
+        }
+    }
+}
+
+impl Placement {
+    /// The placed copy of `tris`; an error when a result is not finite (a
+    /// huge scale or translation) or the scale is not positive.
+    pub fn apply(&self, tris: &[Triangle]) -> Result<Vec<Triangle>, String> {
+        if !(self.scale.is_finite() && self.scale > 0.0) {
+            return Err(format!("scale {} must be finite and positive", self.scale));
+        }
+        if !(self.rotate_deg.is_finite() && self.translate.is_finite()) {
+            return Err("rotation and translation must be finite".into());
+        }
+        let r = self.rotate_deg * (std::f32::consts::PI / 180.0);
+        let q = bvhkit::glam::Quat::from_euler(bvhkit::glam::EulerRot::ZYX, r.z, r.y, r.x);
+        tris.iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let v = t.v.map(|p| q * (p * self.scale) + self.translate);
+                if v.iter().all(|p| p.is_finite()) {
+                    Ok(Triangle { v })
+                } else {
+                    Err(format!("triangle {i} leaves the finite range when placed"))
+                }
+            })
+            .collect()
+    }
+}
+
+/// A vertex, checked to be finite.
+fn finite(v: Vec3, which: usize, fail: Fail<'_>) -> Result<Vec3, MeshError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(fail(format!("vertex {which} has a non-finite coordinate")))
+    }
+}
+
+/// Fan-triangulates an indexed polygon, checking every index.
+fn fan(
+    poly: &[usize],
+    vertices: &[Vec3],
+    out: &mut Vec<Triangle>,
+    fail: Fail<'_>,
+    at: &dyn Fn() -> String,
+) -> Result<(), MeshError> {
+    if poly.len() < 3 {
+        return Err(fail(format!("{}a face with {} vertices", at(), poly.len())));
+    }
+    let v = |i: usize| {
+        vertices.get(i).copied().ok_or_else(|| {
+            fail(format!(
+                "{}vertex index {i} out of range ({} vertices)",
+                at(),
+                vertices.len()
+            ))
+        })
+    };
+    let first = v(poly[0])?;
+    for w in poly[1..].windows(2) {
+        out.push(Triangle::new(first, v(w[0])?, v(w[1])?));
+    }
+    Ok(())
+}
+
+fn load_stl(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+    let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
+    // A binary STL is an 80-byte header, a u32 count and 50 bytes per
+    // triangle. Check the size against the count before parsing, so a lying
+    // count is an error; an ASCII file starts with "solid" and has no count.
+    let ascii = bytes.starts_with(b"solid") && {
+        let probe = &bytes[..bytes.len().min(512)];
+        probe.windows(5).any(|w| w == b"facet") || bytes.len() < 84
+    };
+    if !ascii {
+        if bytes.len() < 84 {
+            return Err(fail(format!(
+                "truncated binary STL ({} bytes, header needs 84)",
+                bytes.len()
+            )));
+        }
+        let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
+        let want = 84 + 50 * count;
+        if bytes.len() as u64 != want {
+            return Err(fail(format!(
+                "binary STL claims {count} triangles ({want} bytes) but has {} bytes",
+                bytes.len()
+            )));
+        }
+    }
+    let mut cursor = std::io::Cursor::new(bytes);
+    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| fail(e.to_string()))?;
+    let mut out = Vec::new();
+    for (k, t) in reader.enumerate() {
+        let t = t.map_err(|e| fail(format!("triangle {}: {e}", k + 1)))?;
+        let mut v = [Vec3::ZERO; 3];
+        for (slot, p) in v.iter_mut().zip(t.vertices) {
+            *slot = finite(Vec3::from_array(p.into()), 3 * k + 1, fail)?;
+        }
+        out.push(Triangle::new(v[0], v[1], v[2]));
+    }
+    Ok(out)
+}
+
+fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+    use ply_rs::ply::Property;
+    let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
+    let mut reader = std::io::BufReader::new(file);
+    let parser = ply_rs::parser::Parser::<ply_rs::ply::DefaultElement>::new();
+    let ply = parser
+        .read_ply(&mut reader)
+        .map_err(|e| fail(format!("not a readable PLY file: {e}")))?;
+    let scalar = |p: Option<&Property>| -> Option<f64> {
+        Some(match *p? {
+            Property::Float(x) => x as f64,
+            Property::Double(x) => x,
+            Property::Int(x) => x as f64,
+            Property::UInt(x) => x as f64,
+            Property::Short(x) => x as f64,
+            Property::UShort(x) => x as f64,
+            Property::Char(x) => x as f64,
+            Property::UChar(x) => x as f64,
+            _ => return None,
+        })
+    };
+    let mut vertices = Vec::new();
+    for (k, v) in ply.payload.get("vertex").into_iter().flatten().enumerate() {
+        let c = |name: &str| {
+            scalar(v.get(name))
+                .ok_or_else(|| fail(format!("vertex {k}: no numeric '{name}' property")))
+        };
+        let p = Vec3::new(c("x")? as f32, c("y")? as f32, c("z")? as f32);
+        vertices.push(finite(p, k, fail)?);
+    }
+    let mut out = Vec::new();
+    for (k, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
+        let list = f.get("vertex_indices").or_else(|| f.get("vertex_index"));
+        let poly: Vec<i64> = match list {
+            Some(Property::ListInt(l)) => l.iter().map(|&i| i as i64).collect(),
+            Some(Property::ListUInt(l)) => l.iter().map(|&i| i as i64).collect(),
+            Some(Property::ListShort(l)) => l.iter().map(|&i| i as i64).collect(),
+            Some(Property::ListUShort(l)) => l.iter().map(|&i| i as i64).collect(),
+            Some(Property::ListChar(l)) => l.iter().map(|&i| i as i64).collect(),
+            Some(Property::ListUChar(l)) => l.iter().map(|&i| i as i64).collect(),
+            _ => return Err(fail(format!("face {k}: no integer 'vertex_indices' list"))),
+        };
+        let poly: Vec<usize> = poly
+            .iter()
+            .map(|&i| usize::try_from(i).unwrap_or(usize::MAX))
+            .collect();
+        fan(&poly, &vertices, &mut out, fail, &|| format!("face {k}: "))?;
+    }
+    Ok(out)
+}
+
+fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    // Numbers with the line each came from; comments (#) dropped.
+    let mut tokens = text.lines().enumerate().flat_map(|(n, line)| {
+        let line = line.split('#').next().unwrap_or("");
+        line.split_whitespace().map(move |t| (n + 1, t))
+    });
+    let line_of_end = text.lines().count();
+    match tokens.next() {
+        Some((_, "OFF")) => {}
+        Some((n, t)) if t.ends_with("OFF") => {
+            return Err(fail(format!(
+                "line {n}: '{t}' variant not supported (plain OFF only)"
+            )))
+        }
+        _ => return Err(fail("line 1: not an OFF file (no 'OFF' header)".into())),
+    }
+    let mut number = |what: &str| -> Result<(usize, String), MeshError> {
+        tokens
+            .next()
+            .map(|(n, t)| (n, t.to_string()))
+            .ok_or_else(|| fail(format!("line {line_of_end}: file ends before {what}")))
+    };
+    fn count(
+        token: Result<(usize, String), MeshError>,
+        what: &str,
+        fail: Fail<'_>,
+    ) -> Result<usize, MeshError> {
+        let (n, t) = token?;
+        t.parse()
+            .map_err(|_| fail(format!("line {n}: {what} '{t}' is not a count")))
+    }
+    let nv = count(number("the vertex count"), "the vertex count", fail)?;
+    let nf = count(number("the face count"), "the face count", fail)?;
+    let _edges = count(number("the edge count"), "the edge count", fail)?;
+    // Grown as data arrives, never reserved from the header's claim.
+    let mut vertices = Vec::new();
+    for k in 0..nv {
+        let mut c = [0f32; 3];
+        for x in &mut c {
+            let (n, t) = number("all vertices")?;
+            *x = t
+                .parse()
+                .map_err(|_| fail(format!("line {n}: coordinate '{t}' is not a number")))?;
+        }
+        vertices.push(finite(Vec3::from_array(c), k, fail)?);
+    }
+    let mut out = Vec::new();
+    for k in 0..nf {
+        let m = count(number("all faces"), "a face's vertex count", fail)?;
+        let mut poly = Vec::new();
+        let mut line = 0;
+        for _ in 0..m {
+            let (n, t) = number("all face indices")?;
+            line = n;
+            poly.push(
+                t.parse::<usize>()
+                    .map_err(|_| fail(format!("line {n}: index '{t}' is not an index")))?,
+            );
+        }
+        fan(&poly, &vertices, &mut out, fail, &|| {
+            format!("line {line} (face {k}): ")
+        })?;
+    }
+    Ok(out)
+}
+
+fn load_obj(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -81,9 +344,6 @@ pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
             tris.push(Triangle::new(vertex(f[0])?, vertex(f[1])?, vertex(f[2])?));
         }
     }
-    if tris.is_empty() {
-        return Err(fail("no triangles in the file".into()));
-    }
     Ok(tris)
 }
 
@@ -108,6 +368,136 @@ mod tests {
         let tris = load(&p).unwrap();
         assert_eq!(tris.len(), 2);
         assert_eq!(tris[0].v[0], Vec3::ZERO);
+    }
+
+    fn write_bytes(name: &str, bytes: &[u8]) -> PathBuf {
+        let p = write(name, "");
+        std::fs::write(&p, bytes).unwrap();
+        p
+    }
+
+    /// A binary STL of the given triangles, with the count field given.
+    fn binary_stl(tris: &[[f32; 9]], count: u32) -> Vec<u8> {
+        let mut b = vec![0u8; 80];
+        b.extend_from_slice(&count.to_le_bytes());
+        for t in tris {
+            b.extend_from_slice(&[0u8; 12]); // normal
+            for x in t {
+                b.extend_from_slice(&x.to_le_bytes());
+            }
+            b.extend_from_slice(&[0u8; 2]);
+        }
+        b
+    }
+
+    const QUAD: [Vec3; 4] = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+
+    #[test]
+    fn every_format_loads_the_same_quad() {
+        let off = write(
+            "quad.off",
+            "OFF\n# a comment\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+        );
+        let stl_ascii = write(
+            "quad.stl",
+            "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n\
+             facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n",
+        );
+        let tri = |a: Vec3, b: Vec3, c: Vec3| [a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z];
+        let faces = [
+            tri(QUAD[0], QUAD[1], QUAD[2]),
+            tri(QUAD[0], QUAD[2], QUAD[3]),
+        ];
+        let stl_bin = write_bytes("quad_bin.stl", &binary_stl(&faces, 2));
+        let ply_ascii = write(
+            "quad.ply",
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+             element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+        );
+        let mut ply_bin = b"ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+        for v in QUAD {
+            for x in v.to_array() {
+                ply_bin.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        ply_bin.push(4);
+        for i in 0i32..4 {
+            ply_bin.extend_from_slice(&i.to_le_bytes());
+        }
+        let ply_bin = write_bytes("quad_bin.ply", &ply_bin);
+        let obj = write(
+            "quad2.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
+        );
+        let want = vec![
+            Triangle::new(QUAD[0], QUAD[1], QUAD[2]),
+            Triangle::new(QUAD[0], QUAD[2], QUAD[3]),
+        ];
+        for p in [off, stl_ascii, stl_bin, ply_ascii, ply_bin, obj] {
+            assert_eq!(
+                load(&p).unwrap_or_else(|e| panic!("{e}")),
+                want,
+                "{}",
+                p.display()
+            );
+        }
+    }
+
+    #[test]
+    fn hostile_files_are_errors_naming_the_file_and_line() {
+        let one = [[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0f32]];
+        let nan = [[0.0, 0.0, 0.0, f32::NAN, 0.0, 0.0, 0.0, 1.0, 0.0f32]];
+        let mut truncated = binary_stl(&one, 1);
+        truncated.truncate(100);
+        for (name, bytes, says) in [
+            // A count that promises 4 billion triangles: refused from the size, not allocated.
+            ("lying_count.stl", binary_stl(&one, u32::MAX), "claims"),
+            ("truncated.stl", truncated, "has 100 bytes"),
+            ("short.stl", vec![1, 2, 3], "truncated"),
+            ("nan.stl", binary_stl(&nan, 1), "non-finite"),
+            ("huge_off.off", b"OFF\n1000000000000000 1 0\n0 0 0\n".to_vec(), "ends before"),
+            ("bad_index.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n".to_vec(), "line 6"),
+            ("bad_number.off", b"OFF\n3 1 0\n0 0 0\n1 x 0\n".to_vec(), "line 4"),
+            ("inf.off", b"OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "non-finite"),
+            ("no_header.off", b"3 1 0\n".to_vec(), "not an OFF file"),
+            ("two_gon.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n".to_vec(), "2 vertices"),
+            (
+                "huge_ply.ply",
+                b"ply\nformat ascii 1.0\nelement vertex 999999999999\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec(),
+                "PLY",
+            ),
+            (
+                "bad_ply_index.ply",
+                b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -5\n".to_vec(),
+                "out of range",
+            ),
+            ("garbage.ply", b"not a ply at all".to_vec(), "PLY"),
+        ] {
+            let p = write_bytes(name, &bytes);
+            let e = load(&p).expect_err(name).to_string();
+            assert!(e.contains(name) && e.contains(says), "{name}: {e}");
+        }
+    }
+
+    #[test]
+    fn placement_scales_rotates_then_translates() {
+        let t = [Triangle::new(Vec3::X, Vec3::Y, Vec3::Z)];
+        let p = Placement {
+            scale: 2.0,
+            rotate_deg: Vec3::new(0.0, 0.0, 90.0),
+            translate: Vec3::new(0.0, 0.0, 1.0),
+        };
+        let out = p.apply(&t).unwrap();
+        // x -> 2x -> (z-rotation by 90 degrees) 2y -> + (0, 0, 1).
+        assert!(
+            (out[0].v[0] - Vec3::new(0.0, 2.0, 1.0)).length() < 1e-5,
+            "{:?}",
+            out[0].v[0]
+        );
+        assert!(Placement { scale: 0.0, ..p }.apply(&t).is_err());
+        assert!(Placement { scale: 1e38, ..p }
+            .apply(&[Triangle::new(Vec3::splat(1e10), Vec3::ZERO, Vec3::ZERO)])
+            .is_err());
     }
 
     #[test]

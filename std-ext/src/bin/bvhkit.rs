@@ -43,11 +43,20 @@ enum Command {
     /// Without mesh files: the built-in rock against a moved copy of the same
     /// tree (B is queried in A's frame through a rigid motion, not rebuilt).
     Collide {
-        /// Mesh file of object A (.obj).
-        #[arg(requires = "b")]
+        /// Mesh file of object A (.obj, .stl, .ply or .off).
         a: Option<PathBuf>,
-        /// Mesh file of object B (.obj), in the same frame as A.
+        /// Mesh file of object B, in A's frame (default: a copy of A; place it
+        /// with --scale-b, --rotate-b and --translate-b to make it overlap).
         b: Option<PathBuf>,
+        /// Scale B about the origin (before rotating).
+        #[arg(long, default_value_t = 1.0)]
+        scale_b: f32,
+        /// Rotate B by these angles in degrees about x, y and z, e.g. 0,30,0.
+        #[arg(long, value_parser = parse_vec3, default_value = "0,0,0")]
+        rotate_b: Vec3Arg,
+        /// Translate B, e.g. 0.1,0,0 (after rotating).
+        #[arg(long, value_parser = parse_vec3, default_value = "0,0,0")]
+        translate_b: Vec3Arg,
         /// Descent rule (stack and recursive traversals): which tree to open
         /// when two internal nodes overlap.
         #[arg(long, default_value = "larger", value_parser = PossibleValuesParser::new(Descent::ALL.map(Descent::name)))]
@@ -79,6 +88,28 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Build one tree over a mesh and report its statistics: node and leaf
+    /// counts, depth, balance, SAH cost, volume and area sums, sibling overlap,
+    /// build time, and the bytes of every tree representation.
+    Stats {
+        /// Mesh file (.obj, .stl, .ply or .off); default: the built-in rock.
+        mesh: Option<PathBuf>,
+        /// Top-down builder preset.
+        #[arg(long, default_value = "sah", value_parser = PossibleValuesParser::new(PRESETS.map(|p| p.name)))]
+        builder: String,
+        /// Bounding volume of the tree.
+        #[arg(long, default_value = "aabb", value_parser = PossibleValuesParser::new(VOLUMES))]
+        bv: String,
+        /// Most triangles per leaf (default: the preset's).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        leaf_size: Option<u32>,
+        /// Timed builds; the median is reported.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=50))]
+        runs: u64,
+        /// Print the report as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure every tree representation (canonical, implicit array,
     /// preorder with 32- and 16-bit links, tri-node, 4-wide, quantized 4-wide)
     /// on the built-in rock pair: bytes per triangle, conversion time, pair and
@@ -106,6 +137,24 @@ enum ModeArg {
     Count,
 }
 
+/// A 3-vector given on the command line as `x,y,z`.
+#[derive(Clone, Copy, Debug)]
+struct Vec3Arg(bvhkit::glam::Vec3);
+
+fn parse_vec3(s: &str) -> Result<Vec3Arg, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y, z] = parts[..] else {
+        return Err(format!("'{s}' is not x,y,z"));
+    };
+    let num = |t: &str| {
+        t.parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or(format!("'{t}' is not a finite number"))
+    };
+    Ok(Vec3Arg(bvhkit::glam::Vec3::new(num(x)?, num(y)?, num(z)?)))
+}
+
 fn print_json<T: serde::Serialize>(value: &T) -> bool {
     match serde_json::to_string_pretty(value) {
         Ok(s) => {
@@ -122,6 +171,47 @@ fn print_json<T: serde::Serialize>(value: &T) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Stats {
+            mesh,
+            builder,
+            bv,
+            leaf_size,
+            runs,
+            json,
+        } => {
+            let (name, tris) = match &mesh {
+                Some(p) => match bvhkit_std::mesh::load(p) {
+                    Ok(t) => (p.display().to_string(), t),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                },
+                None => (
+                    "built-in rock (6 subdivisions)".to_string(),
+                    bvhkit_std::scene::rock(6, 1),
+                ),
+            };
+            let opts = bvhkit_std::stats::StatsOptions {
+                builder,
+                volume: bv,
+                leaf_size,
+                runs: runs as usize,
+            };
+            match bvhkit_std::stats::run(&name, &tris, &opts) {
+                Ok(r) if json => {
+                    if !print_json(&r) {
+                        return ExitCode::FAILURE;
+                    }
+                }
+                Ok(r) => print!("{}", bvhkit_std::stats::render(&r)),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            ExitCode::SUCCESS
+        }
         Command::Layouts {
             subdivisions,
             rays,
@@ -198,6 +288,9 @@ fn main() -> ExitCode {
         Command::Collide {
             a,
             b,
+            scale_b,
+            rotate_b,
+            translate_b,
             descent,
             traversal,
             mode,
@@ -208,22 +301,35 @@ fn main() -> ExitCode {
             verify,
             json,
         } => {
-            let input = match (a, b) {
-                (Some(a), Some(b)) => {
+            let input = match a {
+                Some(a) => {
+                    let b_path = b.clone().unwrap_or_else(|| a.clone());
                     let load = |p: &PathBuf| bvhkit_std::mesh::load(p);
-                    match (load(&a), load(&b)) {
-                        (Ok(ta), Ok(tb)) => Input::Meshes {
-                            name: format!("{} and {}", a.display(), b.display()),
-                            a: ta,
-                            b: tb,
+                    let placement = bvhkit_std::mesh::Placement {
+                        scale: scale_b,
+                        rotate_deg: rotate_b.0,
+                        translate: translate_b.0,
+                    };
+                    let loaded = load(&a).and_then(|ta| Ok((ta, load(&b_path)?)));
+                    match loaded {
+                        Ok((ta, tb)) => match placement.apply(&tb) {
+                            Ok(tb) => Input::Meshes {
+                                name: format!("{} and {} (placed)", a.display(), b_path.display()),
+                                a: ta,
+                                b: tb,
+                            },
+                            Err(e) => {
+                                eprintln!("error: placing B: {e}");
+                                return ExitCode::FAILURE;
+                            }
                         },
-                        (Err(e), _) | (_, Err(e)) => {
+                        Err(e) => {
                             eprintln!("error: {e}");
                             return ExitCode::FAILURE;
                         }
                     }
                 }
-                _ => Input::Default { subdivisions },
+                None => Input::Default { subdivisions },
             };
             let opts = CollideOptions {
                 volume: bv,

@@ -1,0 +1,247 @@
+//! `bvhkit stats`: one tree over one mesh, measured, with the memory each
+//! representation would take.
+
+use crate::{collide::VOLUMES, median_time, OwnedBvh};
+use bvhkit::build::PRESETS;
+use bvhkit::layout::{
+    Implicit, PreNode, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
+};
+use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, TopDown, Triangle};
+use serde::Serialize;
+use std::mem::size_of;
+
+/// What to build.
+#[derive(Clone, Debug)]
+pub struct StatsOptions {
+    /// A builder preset name (see [`PRESETS`]).
+    pub builder: String,
+    /// One of [`VOLUMES`].
+    pub volume: String,
+    /// Most primitives per leaf (`None`: the preset's own).
+    pub leaf_size: Option<u32>,
+    /// Timed builds; the median is reported.
+    pub runs: usize,
+}
+
+/// Bytes of the tree in one representation.
+#[derive(Clone, Debug, Serialize)]
+pub struct MemoryLine {
+    /// Representation.
+    pub layout: &'static str,
+    /// Bytes of records plus the index array, or why it does not fit.
+    pub bytes: Result<usize, String>,
+}
+
+/// The measurements.
+#[derive(Clone, Debug, Serialize)]
+pub struct StatsReport {
+    /// Mesh name.
+    pub mesh: String,
+    /// Triangles.
+    pub triangles: usize,
+    /// Builder preset.
+    pub builder: String,
+    /// Volume type.
+    pub volume: String,
+    /// Median build time.
+    pub build_ms: f64,
+    /// Nodes.
+    pub nodes: usize,
+    /// Leaves.
+    pub leaves: usize,
+    /// Deepest leaf.
+    pub max_depth: usize,
+    /// Mean leaf depth.
+    pub mean_leaf_depth: f64,
+    /// Balance: `log2(leaves) / mean leaf depth` (1 for a perfectly balanced
+    /// tree, smaller for a lopsided one).
+    pub balance: f64,
+    /// Largest leaf.
+    pub max_leaf_size: usize,
+    /// SAH cost (`C_t = C_i = 1`).
+    pub sah_cost: f64,
+    /// Sum of node volumes over the root volume.
+    pub volume_sum: f64,
+    /// Sum of node surface areas (of their boxes) over the root's.
+    pub area_sum: f64,
+    /// Sibling overlap (area of sibling box intersections over the root area).
+    pub sibling_overlap: f64,
+    /// Bytes per representation.
+    pub memory: Vec<MemoryLine>,
+}
+
+/// Builds and measures a tree over `mesh`.
+pub fn run(name: &str, mesh: &[Triangle], opts: &StatsOptions) -> Result<StatsReport, String> {
+    match opts.volume.as_str() {
+        "aabb" => run_with::<Aabb>(name, mesh, opts),
+        "sphere" => run_with::<Sphere>(name, mesh, opts),
+        "obb" => run_with::<Obb>(name, mesh, opts),
+        "14-dop" => run_with::<Dop14>(name, mesh, opts),
+        "18-dop" => run_with::<Dop18>(name, mesh, opts),
+        "26-dop" => run_with::<Dop26>(name, mesh, opts),
+        other => Err(format!("unknown volume '{other}' (one of {VOLUMES:?})")),
+    }
+}
+
+fn run_with<B: BoundingVolume>(
+    name: &str,
+    mesh: &[Triangle],
+    opts: &StatsOptions,
+) -> Result<StatsReport, String> {
+    let mut builder: TopDown = PRESETS
+        .iter()
+        .find(|p| p.name == opts.builder)
+        .map(|p| p.builder)
+        .ok_or_else(|| format!("unknown builder '{}'", opts.builder))?;
+    if let Some(k) = opts.leaf_size {
+        builder = builder.with_max_leaf_size(k);
+    }
+    let (t, tree) = median_time(opts.runs, || OwnedBvh::<B>::build(&builder, mesh));
+    let tree = tree.map_err(|e| e.to_string())?;
+    let v = tree.view();
+    let s = v.stats();
+    let root_area = v.root().bv.aabb().half_area() as f64;
+    let area_sum = v
+        .nodes()
+        .iter()
+        .map(|n| n.bv.aabb().half_area() as f64)
+        .sum::<f64>()
+        / root_area.max(f64::MIN_POSITIVE);
+    let index = 4 * mesh.len();
+    let records = |n: Result<usize, bvhkit::Error>, each: usize| match n {
+        Ok(n) => Ok(n * each + index),
+        Err(e) => Err(e.to_string()),
+    };
+    let pre16 = if v.node_count() <= u16::MAX as usize + 1 && mesh.len() <= u16::MAX as usize + 1 {
+        Ok(v.node_count())
+    } else {
+        Err(bvhkit::Error::FieldOverflow {
+            field: "node index or leaf start of a 16-bit preorder link",
+            value: v.node_count().max(mesh.len()) - 1,
+            max: u16::MAX as usize,
+        })
+    };
+    let memory = vec![
+        MemoryLine {
+            layout: "canonical",
+            bytes: Ok(v.bytes()),
+        },
+        MemoryLine {
+            layout: "implicit",
+            bytes: records(Implicit::slots_needed(&v), size_of::<Slot<B>>()),
+        },
+        MemoryLine {
+            layout: "preorder-32",
+            bytes: records(Ok(v.node_count()), size_of::<PreNode<B, u32>>()),
+        },
+        MemoryLine {
+            layout: "preorder-16",
+            bytes: records(pre16, size_of::<PreNode<B, u16>>()),
+        },
+        MemoryLine {
+            layout: "tri-node",
+            bytes: records(TriNodes::records_needed(&v), size_of::<TriNode<B>>()),
+        },
+        MemoryLine {
+            layout: "wide-4 (boxes)",
+            bytes: records(Wide::records_needed(&v), size_of::<WideNode>()),
+        },
+        MemoryLine {
+            layout: "quantized-4 (boxes)",
+            bytes: records(QuantizedWide::records_needed(&v), size_of::<QuantNode>()),
+        },
+    ];
+    Ok(StatsReport {
+        mesh: name.to_string(),
+        triangles: mesh.len(),
+        builder: opts.builder.clone(),
+        volume: B::NAME.to_string(),
+        build_ms: t.as_secs_f64() * 1e3,
+        nodes: s.nodes,
+        leaves: s.leaves,
+        max_depth: s.max_depth,
+        mean_leaf_depth: s.mean_leaf_depth,
+        balance: if s.mean_leaf_depth > 0.0 {
+            (s.leaves as f64).log2() / s.mean_leaf_depth
+        } else {
+            1.0
+        },
+        max_leaf_size: s.max_leaf_size,
+        sah_cost: s.sah_cost,
+        volume_sum: s.volume_sum,
+        area_sum,
+        sibling_overlap: s.sibling_overlap,
+        memory,
+    })
+}
+
+/// The report as text.
+pub fn render(r: &StatsReport) -> String {
+    let mut s = format!(
+        "mesh: {} ({} triangles)\ntree: {} builder, {} volumes, built in {:.2} ms (median)\n\n",
+        r.mesh, r.triangles, r.builder, r.volume, r.build_ms
+    );
+    for (k, v) in [
+        ("nodes", r.nodes.to_string()),
+        ("leaves", r.leaves.to_string()),
+        ("max depth", r.max_depth.to_string()),
+        ("mean leaf depth", format!("{:.2}", r.mean_leaf_depth)),
+        (
+            "balance (log2 leaves / mean depth)",
+            format!("{:.3}", r.balance),
+        ),
+        ("largest leaf", r.max_leaf_size.to_string()),
+        ("SAH cost", format!("{:.2}", r.sah_cost)),
+        ("sum of volumes / root", format!("{:.2}", r.volume_sum)),
+        ("sum of box areas / root", format!("{:.2}", r.area_sum)),
+        ("sibling overlap", format!("{:.4}", r.sibling_overlap)),
+    ] {
+        s += &format!("{k:<36} {v:>12}\n");
+    }
+    s += "\nmemory (records + 4-byte index per triangle):\n";
+    for m in &r.memory {
+        match &m.bytes {
+            Ok(b) => {
+                s += &format!(
+                    "  {:<22} {:>12} bytes {:>7.1} B/triangle\n",
+                    m.layout,
+                    b,
+                    *b as f64 / r.triangles as f64
+                )
+            }
+            Err(e) => s += &format!("  {:<22} does not fit: {e}\n", m.layout),
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_of_the_rock_are_consistent() {
+        let mesh = crate::scene::rock(3, 1);
+        let opts = StatsOptions {
+            builder: "median".into(),
+            volume: "aabb".into(),
+            leaf_size: Some(1),
+            runs: 1,
+        };
+        let r = run("rock", &mesh, &opts).unwrap();
+        assert_eq!(r.leaves, mesh.len());
+        assert_eq!(r.nodes, 2 * mesh.len() - 1);
+        assert!(r.balance > 0.9 && r.balance <= 1.0 + 1e-9, "{}", r.balance);
+        assert_eq!(r.memory[0].bytes, Ok(r.nodes * 32 + 4 * mesh.len()));
+        assert!(render(&r).contains("quantized-4"));
+        assert!(run(
+            "rock",
+            &mesh,
+            &StatsOptions {
+                volume: "cone".into(),
+                ..opts
+            }
+        )
+        .is_err());
+    }
+}
