@@ -8,6 +8,12 @@
 //! (a `static` array on a microcontroller, a `Vec` on a desktop) and the tree
 //! refers to nodes by index into it.
 //!
+//! Cargo features (all on by default) let an embedded build compile only what
+//! it uses: `sphere`, `obb`, `kdop` (volume types), `bottom-up`, `insertion`
+//! (builders beyond top-down) and `layouts` (the compact tree
+//! representations). With `default-features = false` the crate keeps AABB
+//! trees, the top-down builder, every query and the collision system.
+//!
 //! Data flows one way: primitives -> [`TopDown`] builder -> [`Bvh`] ->
 //! queries ([`Bvh::overlapping`], [`overlapping_pairs`]) -> your callback.
 //!
@@ -44,6 +50,7 @@ pub mod build;
 pub mod bv;
 pub mod collision;
 mod error;
+#[cfg(feature = "layouts")]
 pub mod layout;
 pub mod narrow;
 mod primitive;
@@ -54,9 +61,13 @@ pub mod transform;
 pub mod tree;
 
 pub use build::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
-pub use bv::{
-    symmetric_eigen, Aabb, BoundingVolume, Dop14, Dop18, Dop26, Kdop, Obb, PointSet, Sphere,
-};
+#[cfg(feature = "obb")]
+pub use bv::Obb;
+#[cfg(feature = "sphere")]
+pub use bv::Sphere;
+pub use bv::{symmetric_eigen, Aabb, BoundingVolume, PointSet};
+#[cfg(feature = "kdop")]
+pub use bv::{Dop14, Dop18, Dop26, Kdop};
 pub use error::Error;
 pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};

@@ -14,7 +14,9 @@
 //! | box–box | interval comparisons | yes |
 //! | sphere–sphere | squared distance in `f64` | to `f64` rounding |
 
-use crate::bv::{Aabb, Sphere};
+use crate::bv::Aabb;
+#[cfg(feature = "sphere")]
+use crate::bv::Sphere;
 use crate::primitive::Triangle;
 use glam::Vec3;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -50,6 +52,7 @@ impl Intersects for Aabb {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl Intersects for Sphere {
     fn intersects(&self, other: &Sphere) -> bool {
         let d = self.center.as_dvec3() - other.center.as_dvec3();

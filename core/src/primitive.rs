@@ -6,7 +6,9 @@
 //! implementing [`Primitive`] can be put in a tree: triangles, points, boxes,
 //! spheres, or your own types.
 
-use crate::bv::{Aabb, Sphere};
+use crate::bv::Aabb;
+#[cfg(feature = "sphere")]
+use crate::bv::Sphere;
 use glam::Vec3;
 
 /// Largest coordinate magnitude accepted by the builders (1e32).
@@ -114,6 +116,7 @@ impl Primitive for Aabb {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl Primitive for Sphere {
     fn bounds(&self) -> Aabb {
         crate::BoundingVolume::aabb(self)

@@ -13,7 +13,9 @@
 use crate::bv::Aabb;
 use crate::primitive::Triangle;
 use crate::round::{down, up};
-use crate::{Error, Sphere};
+use crate::Error;
+#[cfg(feature = "sphere")]
+use crate::Sphere;
 use glam::{DMat3, DQuat, DVec3, Quat, Vec3};
 
 /// A rotation followed by a translation, held in `f64`.
@@ -140,6 +142,7 @@ impl Transform for Vec3 {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl Transform for Sphere {
     #[inline]
     fn transformed(&self, t: &Rigid) -> Sphere {

@@ -6,14 +6,18 @@
 //! [`SplitPoint`], [`Stop`], and [`OnFailure`] for splits that do not separate
 //! anything. Bottom-up and insertion builders come with their own modules.
 
+#[cfg(feature = "bottom-up")]
 mod bottom_up;
+#[cfg(feature = "insertion")]
 mod dynamic;
 mod presets;
 mod refit;
 mod strategy;
 mod top_down;
 
+#[cfg(feature = "bottom-up")]
 pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
+#[cfg(feature = "insertion")]
 pub use dynamic::{
     DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch, NULL,
 };
@@ -24,8 +28,11 @@ pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS}
 pub use top_down::{PrimitiveRef, TopDown};
 
 use crate::bv::BoundingVolume;
-use crate::tree::{Node, MAX_DEPTH};
-use crate::Error;
+#[cfg(any(feature = "bottom-up", feature = "insertion"))]
+use crate::{
+    tree::{Node, MAX_DEPTH},
+    Error,
+};
 
 /// A volume containing both, as tight as `merge` makes it (merging again
 /// when a rounding step left a hair outside).
@@ -44,6 +51,7 @@ pub(crate) fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
 /// layout: depth-first, children adjacent, one primitive per leaf. `node(i)`
 /// gives a node's volume and either its children or its primitive. Returns
 /// the depth; deeper than [`MAX_DEPTH`] is an error.
+#[cfg(any(feature = "bottom-up", feature = "insertion"))]
 pub(crate) fn emit_layout<B: BoundingVolume>(
     root: u32,
     nodes: &mut [Node<B>],

@@ -18,14 +18,20 @@
 
 mod aabb;
 mod eigen;
+#[cfg(feature = "kdop")]
 mod kdop;
+#[cfg(feature = "obb")]
 mod obb;
+#[cfg(feature = "sphere")]
 mod sphere;
 
 pub use aabb::Aabb;
 pub use eigen::symmetric_eigen;
+#[cfg(feature = "kdop")]
 pub use kdop::{Dop14, Dop18, Dop26, Kdop};
+#[cfg(feature = "obb")]
 pub use obb::Obb;
+#[cfg(feature = "sphere")]
 pub use sphere::Sphere;
 
 use glam::Vec3;

@@ -12,7 +12,9 @@ use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
 use crate::tree::hierarchy::{check_query, DFS_STACK};
 use crate::tree::{Bvh, Content, Hierarchy};
-use crate::{Error, Sphere};
+use crate::Error;
+#[cfg(feature = "sphere")]
+use crate::Sphere;
 use glam::{DVec3, Vec3};
 
 /// A primitive with a distance to a point.
@@ -33,6 +35,7 @@ impl PointDistance for Aabb {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl PointDistance for Sphere {
     fn distance_squared(&self, p: Vec3) -> f64 {
         let d = (self.center.as_dvec3() - p.as_dvec3()).length() - self.radius as f64;

@@ -14,7 +14,9 @@ use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
 use crate::tree::hierarchy::{check_query, DFS_STACK};
 use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
-use crate::{Error, Sphere};
+use crate::Error;
+#[cfg(feature = "sphere")]
+use crate::Sphere;
 use glam::Vec3;
 
 /// A ray `origin + t * dir` for `t` in `[0, t_max]`.
@@ -98,6 +100,7 @@ impl RayTarget for Triangle {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl RayTarget for Sphere {
     /// Entry point, or `t = 0` when the ray starts inside.
     fn ray_hit(&self, ray: &Ray) -> Option<f32> {

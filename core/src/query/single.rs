@@ -2,7 +2,11 @@
 
 use super::stack::Stack;
 use super::{Hit, Nearest, PointDistance, Ray, RayOrder, RayTarget, Tally};
-use crate::bv::{Aabb, BoundingVolume, Kdop, Sphere};
+#[cfg(feature = "kdop")]
+use crate::bv::Kdop;
+#[cfg(feature = "sphere")]
+use crate::bv::Sphere;
+use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Primitive;
 use crate::tree::hierarchy::{check_query, DFS_STACK};
 use crate::tree::{Bvh, Content, Hierarchy, Kids};
@@ -39,8 +43,10 @@ impl Region for Aabb {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl Region for Sphere {}
 
+#[cfg(feature = "kdop")]
 impl<const K: usize> Region for Kdop<K> {}
 
 /// Traversal order of a single-tree query.
