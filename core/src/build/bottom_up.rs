@@ -133,7 +133,7 @@ impl BottomUp {
     /// [`max_nodes(n)`](crate::max_nodes)) and `indices` (at least `n`).
     ///
     /// Errors: empty or non-finite input, buffers too small, an invalid
-    /// radius, or a tree deeper than [`MAX_DEPTH`] (possible for adversarial
+    /// radius, or a tree deeper than [`MAX_DEPTH`](crate::MAX_DEPTH) (possible for adversarial
     /// input such as exponentially spaced points; the error says how deep).
     pub fn build<'a, B: BoundingVolume, P: Primitive>(
         &self,

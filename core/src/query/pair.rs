@@ -251,7 +251,7 @@ pub struct Pairs<'q, A, H, P, Q, D = Descent, F = Same, X = Bounds, T = ()> {
 impl<'q, A: Hierarchy, H: Hierarchy<Bv = A::Bv>, P, Q> Pairs<'q, A, H, P, Q> {
     /// Tree A over `pa` against tree B over `pb`: stack traversal, larger-first
     /// rule, same frame, bounds answer, no counting. A and B may be stored in
-    /// different representations ([`Bvh`], any [layout](crate::layout)) as
+    /// different representations ([`Bvh`](crate::Bvh), any [layout](crate::layout)) as
     /// long as their volume type is the same.
     pub fn new(a: &'q A, pa: &'q [P], b: &'q H, pb: &'q [Q]) -> Self {
         Pairs {

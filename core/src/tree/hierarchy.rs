@@ -88,8 +88,9 @@ pub enum Content<'a> {
 /// A bounding volume hierarchy as queries see it: volumes, leaves, children.
 ///
 /// Implemented by the canonical [`Bvh`] and by every [layout](crate::layout).
-/// The queries ([`search`](Self::search), [`cast_ray`](Self::cast_ray),
-/// [`nearest`](Self::nearest), [`Pairs`](crate::Pairs)) are written once
+/// The queries ([`Query::search`](crate::Query::search),
+/// [`Query::cast_ray`](crate::Query::cast_ray),
+/// [`Query::nearest`](crate::Query::nearest), [`Pairs`](crate::Pairs)) are written once
 /// against this trait.
 ///
 /// ```
