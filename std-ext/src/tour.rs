@@ -152,7 +152,7 @@ fn measure<B: BoundingVolume>(
     measure_with::<B>(name, Builder::TopDown(*builder), a, b, reference, runs)
 }
 
-fn measure_with<B: BoundingVolume>(
+pub(crate) fn measure_with<B: BoundingVolume>(
     name: &str,
     builder: Builder,
     a: &[Triangle],

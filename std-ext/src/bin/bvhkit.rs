@@ -110,6 +110,25 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run time against error: fit every volume type (time against
+    /// looseness), build with every builder (time against SAH cost and query
+    /// time, Pareto front marked) and lay the tree out in every
+    /// representation (memory against extra volume tests). Writes report.md,
+    /// report.json and SVG plots.
+    Bench {
+        /// Output folder.
+        #[arg(long, default_value = "target/bvhkit-report")]
+        out: PathBuf,
+        /// Icosphere subdivisions per rock (5 = 20 480 triangles).
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=7))]
+        subdivisions: u32,
+        /// Timed runs per measurement; the median is reported.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=50))]
+        runs: u64,
+        /// Also print the report as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure every tree representation (canonical, implicit array,
     /// preorder with 32- and 16-bit links, tri-node, 4-wide, quantized 4-wide)
     /// on the built-in rock pair: bytes per triangle, conversion time, pair and
@@ -211,6 +230,47 @@ fn main() -> ExitCode {
                 }
             }
             ExitCode::SUCCESS
+        }
+        Command::Bench {
+            out,
+            subdivisions,
+            runs,
+            json,
+        } => {
+            let bar = indicatif::ProgressBar::new_spinner();
+            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+            let report = bvhkit_std::report::run(subdivisions, runs as usize, |what| {
+                bar.set_message(what.to_string())
+            });
+            bar.finish_and_clear();
+            let report = match report {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            match bvhkit_std::report::write(&report, &out) {
+                Ok(files) => {
+                    for f in files {
+                        eprintln!("wrote {}", f.display());
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            if json && !print_json(&report) {
+                return ExitCode::FAILURE;
+            }
+            if report.builders.iter().all(|b| b.verified)
+                && report.layouts.iter().all(|l| l.same_answers)
+            {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            }
         }
         Command::Layouts {
             subdivisions,

@@ -1,0 +1,369 @@
+//! `bvhkit bench`: run time against error, written as a report (markdown and
+//! SVG plots) to `target/bvhkit-report/` or a chosen folder.
+//!
+//! Sections: fitting a volume (time against volume above the tightest
+//! volume found), builders (build time against SAH cost and query time, the
+//! Pareto front marked) and tree representations (bytes against extra volume
+//! tests).
+
+use crate::layouts::{self, LayoutRow};
+use crate::tour::{self, Builder};
+use crate::{median_time, scene};
+use bvhkit::build::{
+    BottomUp, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
+};
+use bvhkit::glam::Vec3;
+use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, TopDown, Triangle};
+use plotters::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// One volume fitted to one mesh.
+#[derive(Clone, Debug, Serialize)]
+pub struct FitRow {
+    /// Mesh name.
+    pub mesh: String,
+    /// Fitting method.
+    pub method: &'static str,
+    /// Median time of one fit over all the mesh's vertices.
+    pub ms: f64,
+    /// Volume over the smallest volume any method found on this mesh.
+    pub volume_ratio: f64,
+}
+
+/// One builder on the scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct BuilderRow {
+    /// Builder name.
+    pub builder: String,
+    /// Median build time of one tree.
+    pub build_ms: f64,
+    /// SAH cost (lower is better).
+    pub sah_cost: f64,
+    /// Median time of the pair query of the scene.
+    pub query_ms: f64,
+    /// Whether no other builder is at least as good on all three (and
+    /// better on one).
+    pub pareto: bool,
+    /// Whether the pair query matched brute force.
+    pub verified: bool,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// Scene description.
+    pub scene: String,
+    /// Volume fits.
+    pub fits: Vec<FitRow>,
+    /// Builders.
+    pub builders: Vec<BuilderRow>,
+    /// Representations.
+    pub layouts: Vec<LayoutRow>,
+}
+
+fn fit_all(mesh: &str, points: &[Vec3], runs: usize) -> Vec<FitRow> {
+    fn time<B: BoundingVolume>(runs: usize, f: impl Fn() -> B) -> (f64, f64) {
+        let (t, b) = median_time(runs, f);
+        (t.as_secs_f64() * 1e3, b.volume() as f64)
+    }
+    let raw = [
+        ("aabb", time(runs, || Aabb::fit(points))),
+        ("sphere-ritter", time(runs, || Sphere::ritter(points))),
+        (
+            "sphere-refined",
+            time(runs, || Sphere::ritter_refined(points, 8)),
+        ),
+        ("sphere-welzl", time(runs, || Sphere::welzl(points))),
+        ("obb-pca", time(runs, || Obb::fit(points))),
+        // A k-DOP reports the volume of its enclosing box (the polytope's
+        // own volume is not computed), so its looseness is an upper bound.
+        ("14-dop (box bound)", time(runs, || Dop14::fit(points))),
+        ("18-dop (box bound)", time(runs, || Dop18::fit(points))),
+        ("26-dop (box bound)", time(runs, || Dop26::fit(points))),
+    ];
+    let best = raw.iter().map(|r| r.1 .1).fold(f64::INFINITY, f64::min);
+    raw.iter()
+        .map(|&(method, (ms, v))| FitRow {
+            mesh: mesh.to_string(),
+            method,
+            ms,
+            volume_ratio: v / best.max(f64::MIN_POSITIVE),
+        })
+        .collect()
+}
+
+fn vertices(tris: &[Triangle]) -> Vec<Vec3> {
+    tris.iter().flat_map(|t| t.v).collect()
+}
+
+/// Marks the rows no other row dominates on (build time, SAH, query time).
+fn mark_pareto(rows: &mut [BuilderRow]) {
+    let keys: Vec<[f64; 3]> = rows
+        .iter()
+        .map(|r| [r.build_ms, r.sah_cost, r.query_ms])
+        .collect();
+    for (i, r) in rows.iter_mut().enumerate() {
+        r.pareto = !keys.iter().enumerate().any(|(j, k)| {
+            j != i
+                && k.iter().zip(&keys[i]).all(|(a, b)| a <= b)
+                && k.iter().zip(&keys[i]).any(|(a, b)| a < b)
+        });
+    }
+}
+
+/// Measures everything; `progress` is told what is being measured.
+pub fn run(
+    subdivisions: u32,
+    runs: usize,
+    mut progress: impl FnMut(&str),
+) -> Result<Report, bvhkit::Error> {
+    let (a, b) = scene::rock_pair(subdivisions);
+    let n = a.len();
+    let mut fits = Vec::new();
+    for (name, mesh) in [
+        ("rock", a.clone()),
+        ("soup", scene::soup(n, 7)),
+        ("clustered", scene::clustered(n, 7)),
+        ("slivers", scene::slivers(n, 7)),
+    ] {
+        progress(&format!("fitting volumes: {name}"));
+        fits.extend(fit_all(name, &vertices(&mesh), runs));
+    }
+    let reference = tour::reference_pairs(&a, &b);
+    let mut candidates: Vec<(String, Builder)> = PRESETS
+        .iter()
+        .map(|p| (p.name.to_string(), Builder::TopDown(p.builder)))
+        .collect();
+    candidates.push((
+        "ploc-r4".into(),
+        Builder::BottomUp(BottomUp {
+            method: Method::Ploc { radius: 4 },
+            metric: MergeMetric::SurfaceArea,
+        }),
+    ));
+    candidates.push((
+        "insert-bnb".into(),
+        Builder::Insertion(Insertion {
+            order: InsertOrder::Shuffled(0x5eed),
+            config: bvhkit::build::DynamicConfig {
+                search: SiblingSearch::BranchAndBound,
+                ..Default::default()
+            },
+        }),
+    ));
+    let mut builders = Vec::new();
+    for (name, builder) in candidates {
+        progress(&format!("builder {name}"));
+        let row = tour::measure_with::<Aabb>(&name, builder, &a, &b, &reference, runs)?;
+        builders.push(BuilderRow {
+            builder: name,
+            build_ms: row.build_ms,
+            sah_cost: row.sah_cost,
+            query_ms: row.query_ms,
+            pareto: false,
+            verified: row.matches,
+        });
+    }
+    mark_pareto(&mut builders);
+    progress("tree representations");
+    let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
+    Ok(Report {
+        scene: format!("two rocks of {n} triangles ({subdivisions} subdivisions)"),
+        fits,
+        builders,
+        layouts,
+    })
+}
+
+type Plot = Result<(), Box<dyn std::error::Error>>;
+
+/// A scatter plot of labelled points with a log-scale x axis.
+fn scatter(
+    path: &Path,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    points: &[(f64, f64, String, bool)],
+) -> Plot {
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for p in points {
+        (x0, x1, y0, y1) = (x0.min(p.0), x1.max(p.0), y0.min(p.1), y1.max(p.1));
+    }
+    let x0 = (x0 * 0.7).max(1e-6);
+    let (x1, span) = (x1 * 1.5, (y1 - y0).max(1e-9));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0 - 0.05 * span)..(y1 + 0.1 * span))?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()?;
+    chart.draw_series(points.iter().map(|(x, y, label, marked)| {
+        let color = if *marked { RED } else { BLUE };
+        EmptyElement::at((*x, *y))
+            + Circle::new((0, 0), 4, color.filled())
+            + Text::new(label.clone(), (6, -6), ("sans-serif", 11))
+    }))?;
+    root.present()?;
+    Ok(())
+}
+
+/// Writes `report.md`, `report.json` and the SVG plots into `dir`.
+pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let err = |e: Box<dyn std::error::Error>| e.to_string();
+    let fits_svg = dir.join("fits.svg");
+    let pts: Vec<_> = r
+        .fits
+        .iter()
+        .filter(|f| f.mesh == "rock")
+        .map(|f| (f.ms, f.volume_ratio, f.method.to_string(), false))
+        .collect();
+    scatter(
+        &fits_svg,
+        "Fitting one volume to the rock: time against looseness",
+        ("fit time, ms (log)", "volume / tightest volume found"),
+        &pts,
+    )
+    .map_err(err)?;
+    let builders_svg = dir.join("builders.svg");
+    let pts: Vec<_> = r
+        .builders
+        .iter()
+        .map(|b| (b.build_ms, b.sah_cost, b.builder.clone(), b.pareto))
+        .collect();
+    scatter(
+        &builders_svg,
+        "Builders: build time against SAH cost (red: Pareto front with query time)",
+        ("build time, ms (log)", "SAH cost"),
+        &pts,
+    )
+    .map_err(err)?;
+    let layouts_svg = dir.join("layouts.svg");
+    let base = r
+        .layouts
+        .first()
+        .map(|l| l.pair_bv_tests.max(1))
+        .unwrap_or(1) as f64;
+    let pts: Vec<_> = r
+        .layouts
+        .iter()
+        .filter(|l| l.refused.is_none())
+        .map(|l| {
+            (
+                l.bytes_per_triangle,
+                l.pair_bv_tests as f64 / base,
+                l.layout.to_string(),
+                false,
+            )
+        })
+        .collect();
+    scatter(
+        &layouts_svg,
+        "Representations: memory against volume tests",
+        (
+            "bytes per triangle (log)",
+            "pair-query volume tests / canonical",
+        ),
+        &pts,
+    )
+    .map_err(err)?;
+
+    let mut md = format!(
+        "# bvhkit bench: run time against error\n\nScene: {}.\n\n",
+        r.scene
+    );
+    md += "## Fitting a volume\n\nOne volume around all vertices of each mesh; looseness is the volume over the smallest volume any method found on that mesh. A k-DOP is charged the volume of its enclosing box, an upper bound on its true volume.\n\n![fits](fits.svg)\n\n| mesh | method | ms | volume / tightest |\n|---|---|---:|---:|\n";
+    for f in &r.fits {
+        md += &format!(
+            "| {} | {} | {:.3} | {:.3} |\n",
+            f.mesh, f.method, f.ms, f.volume_ratio
+        );
+    }
+    md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\n| builder | build ms | SAH | query ms | verified |\n|---|---:|---:|---:|---|\n";
+    for b in &r.builders {
+        let name = if b.pareto {
+            format!("**{}**", b.builder)
+        } else {
+            b.builder.clone()
+        };
+        md += &format!(
+            "| {name} | {:.2} | {:.2} | {:.3} | {} |\n",
+            b.build_ms,
+            b.sah_cost,
+            b.query_ms,
+            if b.verified { "yes" } else { "NO" }
+        );
+    }
+    md += "\n## Representations\n\nMemory against the extra volume tests of looser or wider nodes.\n\n![layouts](layouts.svg)\n\n";
+    md += &layouts::render(&r.layouts);
+    let md_path = dir.join("report.md");
+    std::fs::write(&md_path, md).map_err(|e| format!("{}: {e}", md_path.display()))?;
+    let json_path = dir.join("report.json");
+    let json = serde_json::to_string_pretty(r).map_err(|e| e.to_string())?;
+    std::fs::write(&json_path, json).map_err(|e| format!("{}: {e}", json_path.display()))?;
+    Ok(vec![
+        md_path,
+        json_path,
+        fits_svg,
+        builders_svg,
+        layouts_svg,
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pareto_marks_only_undominated_rows() {
+        let row = |name: &str, b, s, q| BuilderRow {
+            builder: name.into(),
+            build_ms: b,
+            sah_cost: s,
+            query_ms: q,
+            pareto: false,
+            verified: true,
+        };
+        let mut rows = vec![
+            row("fast", 1.0, 50.0, 2.0),
+            row("good", 10.0, 40.0, 1.0),
+            row("dominated", 11.0, 41.0, 1.5),
+            row("tie-copy", 1.0, 50.0, 2.0),
+        ];
+        mark_pareto(&mut rows);
+        let marked: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
+        assert_eq!(marked, [true, true, false, true]);
+    }
+
+    #[test]
+    fn a_small_report_is_written_and_verified() {
+        let r = run(2, 1, |_| {}).unwrap();
+        assert!(r.builders.iter().all(|b| b.verified));
+        assert!(r.builders.iter().any(|b| b.pareto));
+        // Welzl's sphere is the smallest sphere: never looser than Ritter's.
+        for mesh in ["rock", "soup"] {
+            let get = |m: &str| {
+                r.fits
+                    .iter()
+                    .find(|f| f.mesh == mesh && f.method == m)
+                    .map(|f| f.volume_ratio)
+            };
+            assert!(get("sphere-welzl") <= get("sphere-ritter"), "{mesh}");
+        }
+        assert!(r.fits.iter().all(|f| f.volume_ratio >= 1.0 - 1e-9));
+        let dir = std::env::temp_dir().join(format!("bvhkit-report-{}", std::process::id()));
+        let files = write(&r, &dir).unwrap();
+        for f in &files {
+            assert!(std::fs::metadata(f).unwrap().len() > 100, "{}", f.display());
+        }
+        let md = std::fs::read_to_string(&files[0]).unwrap();
+        assert!(md.contains("## Builders") && md.contains("**"));
+    }
+}
