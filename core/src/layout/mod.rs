@@ -242,6 +242,30 @@ pub(crate) struct SlotSource {
     pub child_slots: u32,
 }
 
+/// Fills `out` with the records of a 4-wide layout of `bvh`: one record per
+/// step of [`wide_walk`], made by `record` from the slots' exact boxes and
+/// sources. Returns the records used and the number of logical nodes.
+pub(crate) fn fill_wide<B: BoundingVolume, R>(
+    bvh: &Bvh<'_, B>,
+    out: &mut [R],
+    mut record: impl FnMut(&[crate::bv::Aabb], &[SlotSource]) -> Result<R, Error>,
+) -> Result<(usize, u32), Error> {
+    let needed = wide_walk(bvh, |_, _| Ok(()))?;
+    check_capacity(needed, out.len())?;
+    let nodes = bvh.nodes();
+    let mut count = 0u32;
+    wide_walk(bvh, |rec, slots| {
+        let mut boxes = [crate::bv::Aabb::EMPTY; MAX_CHILDREN];
+        for (b, s) in boxes.iter_mut().zip(slots) {
+            *b = nodes[s.node as usize].bv.aabb();
+        }
+        out[rec] = record(&boxes[..slots.len()], slots)?;
+        count += slots.len() as u32;
+        Ok(())
+    })?;
+    Ok((needed, count))
+}
+
 /// The walk shared by the 4-wide layouts. Record 0 is a header whose only
 /// slot is the root; every other record holds the [`collapse`] of one
 /// canonical node. Calls `emit(record, slots)` once per record and returns

@@ -1,6 +1,6 @@
 //! Quantized 4-wide records: child boxes as 8-bit integers in the parent's frame.
 
-use super::{check_capacity, wide::measure_depth, wide_walk};
+use super::{fill_wide, wide::measure_depth, wide_walk};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
@@ -162,16 +162,8 @@ impl<'a> QuantizedWide<'a> {
         bvh: &Bvh<'a, B>,
         out: &'a mut [QuantNode],
     ) -> Result<Self, Error> {
-        let needed = Self::records_needed(bvh)?;
-        check_capacity(needed, out.len())?;
-        let nodes = bvh.nodes();
-        let mut count = 1u32;
-        wide_walk(bvh, |rec, slots| {
-            let mut boxes = [Aabb::EMPTY; MAX_CHILDREN];
-            for (b, s) in boxes.iter_mut().zip(slots) {
-                *b = nodes[s.node as usize].bv.aabb();
-            }
-            let mut r = QuantNode::encode(&boxes[..slots.len()]);
+        let (needed, count) = fill_wide(bvh, out, |boxes, slots| {
+            let mut r = QuantNode::encode(boxes);
             for (k, s) in slots.iter().enumerate() {
                 if s.count as usize > MAX_LEAF {
                     return Err(Error::FieldOverflow {
@@ -186,16 +178,14 @@ impl<'a> QuantizedWide<'a> {
                     r.kids |= (s.child_slots.saturating_sub(2) as u8 & 3) << (2 * k);
                 }
             }
-            count += slots.len() as u32;
-            out[rec] = r;
-            Ok(())
+            Ok(r)
         })?;
         let records: &'a [QuantNode] = &out[..needed];
         let mut q = QuantizedWide {
             records,
             indices: bvh.indices(),
             depth: 0,
-            nodes: count - 1,
+            nodes: count,
         };
         q.depth = measure_depth(&q)? as u32;
         Ok(q)

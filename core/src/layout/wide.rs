@@ -1,6 +1,6 @@
 //! The 4-wide layout: four children's boxes side by side.
 
-use super::{check_capacity, wide_walk};
+use super::{fill_wide, wide_walk};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
@@ -94,14 +94,9 @@ impl<'a> Wide<'a> {
         bvh: &Bvh<'a, B>,
         out: &'a mut [WideNode],
     ) -> Result<Self, Error> {
-        let needed = Self::records_needed(bvh)?;
-        check_capacity(needed, out.len())?;
-        let nodes = bvh.nodes();
-        let mut count = 1u32;
-        wide_walk(bvh, |rec, slots| {
+        let (needed, count) = fill_wide(bvh, out, |boxes, slots| {
             let mut r = WideNode::EMPTY;
-            for (k, s) in slots.iter().enumerate() {
-                let b = nodes[s.node as usize].bv.aabb();
+            for (k, (b, s)) in boxes.iter().zip(slots).enumerate() {
                 for axis in 0..3 {
                     r.boxes.min[axis][k] = b.min[axis];
                     r.boxes.max[axis][k] = b.max[axis];
@@ -113,16 +108,14 @@ impl<'a> Wide<'a> {
                     s.count
                 };
             }
-            count += slots.len() as u32;
-            out[rec] = r;
-            Ok(())
+            Ok(r)
         })?;
         let records: &'a [WideNode] = &out[..needed];
         let mut wide = Wide {
             records,
             indices: bvh.indices(),
             depth: 0,
-            nodes: count - 1,
+            nodes: count,
         };
         wide.depth = measure_depth(&wide)? as u32;
         Ok(wide)
