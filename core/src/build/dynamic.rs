@@ -715,6 +715,13 @@ impl Default for Insertion {
 }
 
 impl Insertion {
+    /// Buffer lengths for `n` primitives: `(storage, order)` = `(2n - 1, n)`
+    /// (plus [`max_nodes`](crate::max_nodes)`(n)` nodes and `n` indices for
+    /// the output tree). A `const fn`, to size `static` buffers.
+    pub const fn scratch_len(n: usize) -> (usize, usize) {
+        (crate::max_nodes(n), n)
+    }
+
     /// Builds: `storage` needs `2n - 1` nodes, `order` `n` words, `nodes`
     /// `2n - 1` and `indices` `n`.
     pub fn build<'a, B: BoundingVolume, P: Primitive>(

@@ -198,6 +198,19 @@ impl TopDown {
         }
     }
 
+    /// Bytes of caller memory a build over `n` primitives needs with volume
+    /// `B`: nodes plus indices. A `const fn`, so firmware can check a budget
+    /// at compile time:
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, TopDown};
+    /// const BYTES: usize = TopDown::sah().bytes_needed::<Aabb>(256);
+    /// assert_eq!(BYTES, 511 * 32 + 256 * 4);
+    /// ```
+    pub const fn bytes_needed<B: BoundingVolume>(&self, n: usize) -> usize {
+        max_nodes(n) * core::mem::size_of::<Node<B>>() + self.index_capacity(n) * 4
+    }
+
     fn check(&self) -> Result<(), Error> {
         if self.stop.max_leaf_size == 0 {
             return Err(Error::InvalidConfig("max_leaf_size must be at least 1"));
@@ -363,7 +376,7 @@ impl TopDown {
         scratch: &mut [u32],
     ) -> Result<(usize, u32), Error> {
         let (bounds, centroids) = bounds_of(src, idx);
-        const STACK: usize = 40; // >= log2(MAX_PRIMITIVES) + 2
+        const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
         let mut stack = [Task {
             node: 0,
             start: 0,
@@ -736,6 +749,24 @@ fn plan<S: Source, B: BoundingVolume>(
             _ => plan_binned_sah::<S, MAX_BINS>(src, range, task, k, axes, norm),
         };
     }
+    plan_by_directions(src, range, scratch, task, bv, axis, split, partition, norm)
+}
+
+/// Every other combination: candidate directions, each scored by its split
+/// point. Kept out of [`plan`] so its frame is not on the stack of the fast path.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn plan_by_directions<S: Source, B: BoundingVolume>(
+    src: &S,
+    range: &mut [S::Item],
+    scratch: &mut [u32],
+    task: &Task,
+    bv: &B,
+    axis: AxisChoice,
+    split: SplitPoint,
+    partition: Partition,
+    norm: &Norm,
+) -> Option<Plan> {
     let dirs = directions(src, range, task, bv, axis);
     let mut best: Option<(f32, Plan)> = None;
     let mut consider = |c: f32, p: Plan| {
@@ -903,6 +934,9 @@ fn evaluate_bins<S: Source, B: BoundingVolume>(
 }
 
 /// The fast path: one pass bins every primitive along x, y and z at once.
+/// Not inlined, so that only the bin array of the size in use is on the
+/// stack (inlined, all four sizes' frames add up: 4 KiB on a Cortex-M4).
+#[inline(never)]
 fn plan_binned_sah<S: Source, const N: usize>(
     src: &S,
     range: &[S::Item],

@@ -152,6 +152,7 @@ impl Default for Aabb {
 impl BoundingVolume for Aabb {
     const NAME: &'static str = "aabb";
     const EMPTY: Self = Aabb::EMPTY;
+    const ZERO: Self = Aabb::new(Vec3::ZERO, Vec3::ZERO);
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         let mut b = Aabb::EMPTY;

@@ -103,6 +103,10 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
         _ => "26-dop",
     };
     const EMPTY: Self = Kdop::EMPTY;
+    const ZERO: Self = Kdop {
+        min: [0.0; K],
+        max: [0.0; K],
+    };
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         let mut lo = [f64::INFINITY; K];

@@ -153,6 +153,11 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     const NAME: &'static str;
     /// The empty volume: the identity of [`merge`](Self::merge), contains nothing.
     const EMPTY: Self;
+    /// Every bit zero (a point at the origin). Only for initialising storage:
+    /// a `static` array of nodes filled with it lands in `.bss` and costs no
+    /// flash, whereas one filled with [`EMPTY`](Self::EMPTY) (infinities) is
+    /// copied from flash at start-up.
+    const ZERO: Self;
 
     /// Fits a volume around a non-empty point set. Conservative: every point is inside.
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self;

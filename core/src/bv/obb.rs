@@ -189,6 +189,11 @@ impl PointSet for Points8 {
 impl BoundingVolume for Obb {
     const NAME: &'static str = "obb";
     const EMPTY: Self = Obb::EMPTY;
+    const ZERO: Self = Obb {
+        center: Vec3::ZERO,
+        axes: [Vec3::ZERO; 3],
+        half_extents: Vec3::ZERO,
+    };
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         Obb::pca(points)

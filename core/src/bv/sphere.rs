@@ -324,6 +324,7 @@ fn grow(s: &mut S64, p: DVec3) {
 impl BoundingVolume for Sphere {
     const NAME: &'static str = "sphere";
     const EMPTY: Self = Sphere::EMPTY;
+    const ZERO: Self = Sphere::new(Vec3::ZERO, 0.0);
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         Sphere::ritter_refined(points, DEFAULT_REFINEMENTS)

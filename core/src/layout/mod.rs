@@ -245,6 +245,7 @@ pub(crate) struct SlotSource {
 /// Fills `out` with the records of a 4-wide layout of `bvh`: one record per
 /// step of [`wide_walk`], made by `record` from the slots' exact boxes and
 /// sources. Returns the records used and the number of logical nodes.
+#[inline(never)] // its stack stays out of the caller's frame
 pub(crate) fn fill_wide<B: BoundingVolume, R>(
     bvh: &Bvh<'_, B>,
     out: &mut [R],
@@ -270,6 +271,7 @@ pub(crate) fn fill_wide<B: BoundingVolume, R>(
 /// slot is the root; every other record holds the [`collapse`] of one
 /// canonical node. Calls `emit(record, slots)` once per record and returns
 /// the number of records. With an `emit` that does nothing it sizes storage.
+#[inline(never)] // its stack stays out of the caller's frame
 pub(crate) fn wide_walk<B: BoundingVolume>(
     bvh: &Bvh<'_, B>,
     mut emit: impl FnMut(usize, &[SlotSource]) -> Result<(), Error>,

@@ -36,6 +36,13 @@ impl WideNode {
         count: [UNUSED; MAX_CHILDREN],
     };
 
+    /// A record of zero bits, for `static` storage (`.bss`, no flash); see
+    /// [`Node::ZERO`](crate::Node::ZERO).
+    pub const ZERO: Self = WideNode {
+        count: [0; MAX_CHILDREN],
+        ..WideNode::EMPTY
+    };
+
     /// The box of slot `k`.
     #[inline(always)]
     pub fn slot_box(&self, k: usize) -> Aabb {
@@ -83,6 +90,18 @@ pub struct Wide<'a> {
 }
 
 impl<'a> Wide<'a> {
+    /// Most records a tree over `n` primitives can need (one per inner node
+    /// of the collapsed tree, at most `n - 1`, and one for a lone leaf): a
+    /// `const fn` to size `static` storage; [`records_needed`](Self::records_needed)
+    /// gives the exact count of a built tree.
+    pub const fn max_records(n: usize) -> usize {
+        if n > 1 {
+            n - 1
+        } else {
+            1
+        }
+    }
+
     /// Records the collapse of `bvh` needs.
     pub fn records_needed<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
         wide_walk(bvh, |_, _| Ok(()))

@@ -26,8 +26,8 @@ pub use descent::{Decision, DepthSwitch, Descent, DescentRule, Open};
 pub use heap::BEST_FIRST_QUEUE;
 pub use nearest::{Nearest, PointDistance};
 pub use pair::{
-    overlapping_pairs, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place, Same, PAIR_STACK,
-    WIDE_PAIR_STACK,
+    overlapping_pairs, pair_stack_bound, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place,
+    Same, PAIR_STACK, SMALL_PAIR_STACK, WIDE_PAIR_STACK,
 };
 pub use ray::{Hit, Ray, RayOrder, RayTarget};
 pub use single::{Order, Query, Region};

@@ -32,14 +32,27 @@ pub const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
 /// so binary queries keep the smaller stack frame.
 pub const WIDE_PAIR_STACK: usize = 15 * MAX_DEPTH + 4;
 
+/// Stack entries for a pair traversal of two binary trees whose
+/// [`pair_stack_bound`] fits (both at most 22 deep, for instance). Such
+/// queries run on this smaller stack: 816 bytes instead of 3 KiB, which
+/// matters on a microcontroller.
+pub const SMALL_PAIR_STACK: usize = 4 * 16 + 4;
+
 /// Most pairs waiting on the stack of a pair traversal of trees with these
 /// (arity, depth): `s` two-sided steps (at most the smaller depth) leave
 /// `ka * kb - 1` pairs each, the remaining one-sided steps `k - 1` each. The
 /// count is linear in `s`, so its maximum is at an end of the range.
-pub(crate) fn pair_stack_bound((ka, da): (usize, usize), (kb, db): (usize, usize)) -> usize {
-    let m = da.min(db);
-    let at = |s: usize| s * (ka * kb - 1) + (da - s) * (ka - 1) + (db - s) * (kb - 1);
-    at(0).max(at(m)) + 1
+///
+/// For two binary trees this is `da + db + min(da, db) + 1`:
+///
+/// ```
+/// assert_eq!(bvhkit::query::pair_stack_bound((2, 7), (2, 9)), 7 + 9 + 7 + 1);
+/// ```
+pub const fn pair_stack_bound((ka, da): (usize, usize), (kb, db): (usize, usize)) -> usize {
+    let m = if da < db { da } else { db };
+    let none = da * (ka - 1) + db * (kb - 1);
+    let all = m * (ka * kb - 1) + (da - m) * (ka - 1) + (db - m) * (kb - 1);
+    (if none > all { none } else { all }) + 1
 }
 
 /// How a two-tree query walks the trees. The answer is the same for every
@@ -384,6 +397,7 @@ where
         let binary = A::ARITY == 2 && H::ARITY == 2;
         let capacity = if binary { PAIR_STACK } else { WIDE_PAIR_STACK };
         let needed = pair_stack_bound((A::ARITY, self.a.depth()), (H::ARITY, self.b.depth()));
+        let small = binary && needed <= SMALL_PAIR_STACK;
         if needed > capacity {
             return Err(Error::StackOverflow {
                 depth: self.a.depth() + self.b.depth(),
@@ -412,8 +426,14 @@ where
                 let _ = walk.recurse(rule, ra, rb, &yb, 0);
                 Ok(())
             }
+            PairTraversal::Stack(rule) if small => {
+                walk.stack::<_, SMALL_PAIR_STACK>(rule).map(drop)
+            }
             PairTraversal::Stack(rule) if binary => walk.stack::<_, PAIR_STACK>(rule).map(drop),
             PairTraversal::Stack(rule) => walk.stack::<_, WIDE_PAIR_STACK>(rule).map(drop),
+            PairTraversal::Simultaneous if small => walk
+                .stack::<_, SMALL_PAIR_STACK>(&Descent::Simultaneous)
+                .map(drop),
             PairTraversal::Simultaneous if binary => walk
                 .stack::<_, PAIR_STACK>(&Descent::Simultaneous)
                 .map(drop),
@@ -687,7 +707,9 @@ where
     }
 
     /// The same traversal with an explicit stack; pairs are tested before
-    /// they are pushed. `Ok(Break)` when the sink stopped early.
+    /// they are pushed. `Ok(Break)` when the sink stopped early. Not inlined,
+    /// so only the stack array in use occupies the caller's stack.
+    #[inline(never)]
     fn stack<D: DescentRule, const N: usize>(&mut self, rule: &D) -> Result<Flow, Error> {
         let mut stack = [(0u32, 0u32, 0u32); N];
         let mut top = 0;

@@ -12,7 +12,7 @@ use super::stack::Stack;
 use super::Tally;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Triangle;
-use crate::tree::hierarchy::{check_query, DFS_STACK};
+use crate::tree::hierarchy::{check_query, BINARY_DFS_STACK, DFS_STACK};
 use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
 #[cfg(feature = "sphere")]
@@ -331,69 +331,100 @@ pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
 ) -> Result<Option<Hit>, Error> {
     check_query(h, prims.len())?;
     let inv = ray.dir.recip();
-    let mut best: Option<Hit> = None;
     tally.bv_tests(1);
     let Some(t_root) = enter(h, h.root(), ray, inv) else {
         return Ok(None);
     };
-    let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
     match order {
+        // Each order in its own function, so only its stack is on the call stack.
+        RayOrder::DepthFirst if H::ARITY == 2 => {
+            ray_depth_first::<H, P, BINARY_DFS_STACK>(h, prims, ray, inv, t_root, &mut tally)
+        }
         RayOrder::DepthFirst => {
-            let mut stack = Stack::<(u32, f32), DFS_STACK>::with((h.root(), t_root), h.depth());
-            while let Some((n, t)) = stack.pop() {
-                if beaten(t, &best) {
-                    continue;
-                }
-                match h.content(n) {
-                    Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, &mut tally),
-                    Content::Inner(kids) => {
-                        let entries = enter_children(h, &kids, ray, inv);
-                        let kids = kids.of_arity(H::ARITY);
-                        tally.bv_tests(kids.len() as u32);
-                        // Sort the hit children far to near, so the nearest is popped first.
-                        let mut hit = [(0u32, 0f32); MAX_CHILDREN];
-                        let mut m = 0;
-                        for (&c, &entry) in kids.iter().zip(&entries) {
-                            if let Some(tc) = entry {
-                                let mut k = m;
-                                while k > 0 && hit[k - 1].1 < tc {
-                                    hit[k] = hit[k - 1];
-                                    k -= 1;
-                                }
-                                hit[k] = (c, tc);
-                                m += 1;
-                            }
+            ray_depth_first::<H, P, DFS_STACK>(h, prims, ray, inv, t_root, &mut tally)
+        }
+        RayOrder::BestFirst => ray_best_first(h, prims, ray, inv, t_root, &mut tally),
+    }
+}
+
+/// Depth-first closest hit, nearer child first, on a stack of `N` entries.
+#[inline(never)]
+fn ray_depth_first<H: Hierarchy + ?Sized, P: RayTarget, const N: usize>(
+    h: &H,
+    prims: &[P],
+    ray: &Ray,
+    inv: Vec3,
+    t_root: f32,
+    tally: &mut impl Tally,
+) -> Result<Option<Hit>, Error> {
+    let mut best: Option<Hit> = None;
+    let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
+    let mut stack = Stack::<(u32, f32), N>::with((h.root(), t_root), h.depth());
+    while let Some((n, t)) = stack.pop() {
+        if beaten(t, &best) {
+            continue;
+        }
+        match h.content(n) {
+            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
+            Content::Inner(kids) => {
+                let entries = enter_children(h, &kids, ray, inv);
+                let kids = kids.of_arity(H::ARITY);
+                tally.bv_tests(kids.len() as u32);
+                // Sort the hit children far to near, so the nearest is popped first.
+                let mut hit = [(0u32, 0f32); MAX_CHILDREN];
+                let mut m = 0;
+                for (&c, &entry) in kids.iter().zip(&entries) {
+                    if let Some(tc) = entry {
+                        let mut k = m;
+                        while k > 0 && hit[k - 1].1 < tc {
+                            hit[k] = hit[k - 1];
+                            k -= 1;
                         }
-                        for &e in &hit[..m] {
-                            stack.push(e)?;
-                        }
+                        hit[k] = (c, tc);
+                        m += 1;
                     }
+                }
+                for &e in &hit[..m] {
+                    stack.push(e)?;
                 }
             }
         }
-        RayOrder::BestFirst => {
-            let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
-            heap.push(t_root as f64, h.root());
-            while let Some((t, n)) = heap.pop() {
-                if beaten(t as f32, &best) {
-                    // Every queued node is at least this far: done.
-                    break;
-                }
-                match h.content(n) {
-                    Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, &mut tally),
-                    Content::Inner(kids) => {
-                        let entries = enter_children(h, &kids, ray, inv);
-                        let kids = kids.of_arity(H::ARITY);
-                        tally.bv_tests(kids.len() as u32);
-                        for (&c, &entry) in kids.iter().zip(&entries) {
-                            let Some(tc) = entry else {
-                                continue;
-                            };
-                            if !heap.push(tc as f64, c) {
-                                // Queue full: search this subtree depth-first now.
-                                best = subtree_ray(h, prims, ray, inv, c, best, &mut tally)?;
-                            }
-                        }
+    }
+    Ok(best)
+}
+
+/// Best-first closest hit on the fixed queue.
+#[inline(never)]
+fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
+    h: &H,
+    prims: &[P],
+    ray: &Ray,
+    inv: Vec3,
+    t_root: f32,
+    tally: &mut impl Tally,
+) -> Result<Option<Hit>, Error> {
+    let mut best: Option<Hit> = None;
+    let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
+    let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
+    heap.push(t_root as f64, h.root());
+    while let Some((t, n)) = heap.pop() {
+        if beaten(t as f32, &best) {
+            // Every queued node is at least this far: done.
+            break;
+        }
+        match h.content(n) {
+            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
+            Content::Inner(kids) => {
+                let entries = enter_children(h, &kids, ray, inv);
+                let kids = kids.of_arity(H::ARITY);
+                tally.bv_tests(kids.len() as u32);
+                for (&c, &entry) in kids.iter().zip(&entries) {
+                    let Some(tc) = entry else {
+                        continue;
+                    };
+                    if !heap.push(tc as f64, c) {
+                        // Queue full: search this subtree depth-first now.
+                        best = subtree_ray(h, prims, ray, inv, c, best, tally)?;
                     }
                 }
             }

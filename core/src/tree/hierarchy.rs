@@ -185,6 +185,8 @@ pub(crate) fn check_query<H: Hierarchy + ?Sized>(h: &H, given: usize) -> Result<
 /// Entries of a depth-first stack that serves every representation: at most
 /// `ARITY - 1` siblings wait per level.
 pub(crate) const DFS_STACK: usize = (MAX_CHILDREN - 1) * MAX_DEPTH + 1;
+/// The depth-first stack of a binary tree: one waiting node per level.
+pub(crate) const BINARY_DFS_STACK: usize = MAX_DEPTH + 1;
 
 impl<B: BoundingVolume> Hierarchy for Bvh<'_, B> {
     type Bv = B;

@@ -65,6 +65,20 @@ impl<B: BoundingVolume> Node<B> {
         count: 0,
     };
 
+    /// A node of zero bits, for `static` storage: it goes to `.bss` (no
+    /// flash), where an array of [`EMPTY`](Self::EMPTY) would be copied from
+    /// flash at start-up. Builders overwrite every node they use.
+    ///
+    /// ```
+    /// use bvhkit::{max_nodes, Aabb, Node};
+    /// static mut NODES: [Node<Aabb>; max_nodes(256)] = [Node::ZERO; max_nodes(256)];
+    /// ```
+    pub const ZERO: Self = Node {
+        bv: B::ZERO,
+        first: 0,
+        count: 0,
+    };
+
     /// Whether this node is a leaf.
     #[inline]
     pub const fn is_leaf(&self) -> bool {
