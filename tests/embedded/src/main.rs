@@ -1,0 +1,265 @@
+//! bvhkit on a Cortex-M4: builds BVHs over two small objects from `static`
+//! buffers, runs two-tree and ray queries, and prints the answers, the cycle
+//! counts and the stack high-water mark through semihosting. The host check
+//! (`scripts/embedded-demo`) compares every answer line with brute force.
+//!
+//! Output lines (`key value...`), one per fact:
+//! `pairs <label> <count> <digest>`, `exact <label> <count> <digest>`,
+//! `ray <label> <r> <prim|none> <t bits>`, `cycles <what> <n>`, `stack <bytes>`.
+#![no_std]
+#![no_main]
+// The baseline build (no feature) leaves the scene and the clock unused.
+#![cfg_attr(not(feature = "minimal"), allow(dead_code))]
+
+mod scene;
+
+use core::ptr::addr_of_mut;
+use core::sync::atomic::{AtomicU32, Ordering};
+
+use cortex_m::peripheral::syst::SystClkSource;
+use cortex_m_rt::{entry, exception};
+use cortex_m_semihosting::{debug, hprintln};
+
+#[cfg(feature = "minimal")]
+use bvhkit::{max_nodes, Aabb, Node, Triangle};
+#[cfg(feature = "minimal")]
+use scene::N;
+
+/// Every buffer the demo uses, in `.bss`: nothing on the heap, little on the stack.
+#[cfg(feature = "minimal")]
+mod buffers {
+    use super::*;
+    pub static mut TRIS_A: [Triangle; N] = [Triangle::new(
+        bvhkit::glam::Vec3::ZERO,
+        bvhkit::glam::Vec3::ZERO,
+        bvhkit::glam::Vec3::ZERO,
+    ); N];
+    pub static mut TRIS_B: [Triangle; N] = [Triangle::new(
+        bvhkit::glam::Vec3::ZERO,
+        bvhkit::glam::Vec3::ZERO,
+        bvhkit::glam::Vec3::ZERO,
+    ); N];
+    pub static mut NODES_A: [Node<Aabb>; max_nodes(N)] = [Node::ZERO; max_nodes(N)];
+    pub static mut NODES_B: [Node<Aabb>; max_nodes(N)] = [Node::ZERO; max_nodes(N)];
+    pub static mut INDEX_A: [u32; N] = [0; N];
+    pub static mut INDEX_B: [u32; N] = [0; N];
+}
+
+// ---- timing: the DWT cycle counter when the core has one, else SysTick ----
+
+static SYSTICK_WRAPS: AtomicU32 = AtomicU32::new(0);
+const RELOAD: u32 = 0x00FF_FFFF;
+
+#[exception]
+fn SysTick() {
+    SYSTICK_WRAPS.fetch_add(1, Ordering::Relaxed);
+}
+
+struct Clock {
+    dwt: bool,
+}
+
+impl Clock {
+    fn now(&self) -> u64 {
+        if self.dwt {
+            return cortex_m::peripheral::DWT::cycle_count() as u64;
+        }
+        // SysTick counts down from RELOAD; wraps are counted by the handler.
+        loop {
+            let w = SYSTICK_WRAPS.load(Ordering::Acquire);
+            let v = cortex_m::peripheral::SYST::get_current();
+            if SYSTICK_WRAPS.load(Ordering::Acquire) == w {
+                return w as u64 * (RELOAD as u64 + 1) + (RELOAD - v) as u64;
+            }
+        }
+    }
+
+    /// Runs `f`, printing its tick count and its stack high-water mark.
+    fn time<T>(&self, what: &str, f: impl FnOnce() -> T) -> T {
+        paint_stack();
+        let start = self.now();
+        let out = f();
+        let end = self.now();
+        let stack = stack_high_water();
+        hprintln!("cycles {} {}", what, end.wrapping_sub(start));
+        hprintln!("stack {} {}", what, stack);
+        out
+    }
+}
+
+// ---- stack high-water mark: paint the free stack, scan after the work ----
+
+const PAINT: u32 = 0xC0FF_EE11;
+
+extern "C" {
+    static mut __sheap: u32;
+    static _stack_start: u32;
+}
+
+/// Fills the unused stack (from the end of `.bss` to a little below the
+/// current stack pointer) with a pattern.
+fn paint_stack() {
+    let bottom = addr_of_mut!(__sheap) as usize;
+    let sp = cortex_m::register::msp::read() as usize;
+    let mut p = bottom;
+    while p + 256 < sp {
+        // SAFETY: [bottom, sp - 256) is RAM no live object uses: above it is
+        // this frame, below it `.bss`.
+        unsafe { core::ptr::write_volatile(p as *mut u32, PAINT) };
+        p += 4;
+    }
+}
+
+/// Bytes of stack ever used: from the top down to the lowest overwritten word.
+fn stack_high_water() -> usize {
+    let bottom = addr_of_mut!(__sheap) as usize;
+    let top = core::ptr::addr_of!(_stack_start) as usize;
+    let mut p = bottom;
+    // SAFETY: reads of painted, otherwise unused RAM.
+    while p < top && unsafe { core::ptr::read_volatile(p as *const u32) } == PAINT {
+        p += 4;
+    }
+    top - p
+}
+
+#[entry]
+fn main() -> ! {
+    let mut cp = cortex_m::Peripherals::take().unwrap();
+    cp.DCB.enable_trace();
+    cp.DWT.enable_cycle_counter();
+    let dwt = {
+        let a = cortex_m::peripheral::DWT::cycle_count();
+        cortex_m::asm::delay(100);
+        cortex_m::peripheral::DWT::cycle_count() != a
+    };
+    if !dwt {
+        cp.SYST.set_clock_source(SystClkSource::Core);
+        cp.SYST.set_reload(RELOAD);
+        cp.SYST.clear_current();
+        cp.SYST.enable_interrupt();
+        cp.SYST.enable_counter();
+    }
+    let clock = Clock { dwt };
+    hprintln!("clock {}", if dwt { "dwt-cycles" } else { "systick" });
+    paint_stack();
+    let ok = run(&clock);
+    hprintln!("stack all {}", stack_high_water());
+    debug::exit(if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// A panic is a failed run: say so and exit with a failure code.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    hprintln!("panic {}", info);
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+#[cfg(not(feature = "minimal"))]
+fn run(_clock: &Clock) -> bool {
+    hprintln!("baseline: no bvhkit work");
+    true
+}
+
+#[cfg(feature = "minimal")]
+#[inline(never)]
+fn run(clock: &Clock) -> bool {
+    match demo(clock) {
+        Ok(()) => true,
+        Err(e) => {
+            hprintln!("error {:?}", e);
+            false
+        }
+    }
+}
+
+#[cfg(feature = "minimal")]
+fn print_pairs(kind: &str, label: &str, count: usize, digest: u32) {
+    hprintln!("{} {} {} {:08x}", kind, label, count, digest);
+}
+
+#[cfg(feature = "minimal")]
+fn print_ray(label: &str, r: usize, hit: Option<bvhkit::Hit>) {
+    match hit {
+        Some(h) => hprintln!("ray {} {} {} {:08x}", label, r, h.prim, h.t.to_bits()),
+        None => hprintln!("ray {} {} none 0", label, r),
+    }
+}
+
+#[cfg(feature = "minimal")]
+#[inline(never)]
+fn demo(clock: &Clock) -> Result<(), bvhkit::Error> {
+    use buffers::*;
+    use bvhkit::{Descent, Ray, RayOrder, SplitPoint, TopDown};
+
+    // SAFETY: `demo` runs once; these are the only references to the buffers.
+    let (tris_a, tris_b, nodes_a, nodes_b, index_a, index_b) = unsafe {
+        (
+            &mut *addr_of_mut!(TRIS_A),
+            &mut *addr_of_mut!(TRIS_B),
+            &mut *addr_of_mut!(NODES_A),
+            &mut *addr_of_mut!(NODES_B),
+            &mut *addr_of_mut!(INDEX_A),
+            &mut *addr_of_mut!(INDEX_B),
+        )
+    };
+    scene::object(0, tris_a);
+    scene::object(1, tris_b);
+    hprintln!("scene {} {}", N, N);
+    let (tris_a, tris_b): (&[Triangle], &[Triangle]) = (tris_a, tris_b);
+
+    // Eight bins: the SAH tree is nearly as good, and the builder's bin
+    // array (and so its stack) half the size of the default sixteen.
+    let sah = TopDown {
+        split: SplitPoint::Bins(8),
+        ..TopDown::sah()
+    };
+    let a = clock.time("build-sah-a", || sah.build(tris_a, nodes_a, index_a))?;
+    let b = clock.time("build-sah-b", || sah.build(tris_b, nodes_b, index_b))?;
+    hprintln!("tree a nodes {} depth {}", a.node_count(), a.depth());
+
+    let mut digest = 0u32;
+    let count = clock.time("pairs-dfs", || {
+        bvhkit::overlapping_pairs(&a, tris_a, &b, tris_b, Descent::Larger, |i, j| {
+            digest = digest.wrapping_add(scene::mix(i, j))
+        })
+    })?;
+    print_pairs("pairs", "aabb-sah-dfs", count, digest);
+
+    let mut rays = [None; scene::RAYS];
+    clock.time("rays-dfs", || -> Result<(), bvhkit::Error> {
+        for (r, out) in rays.iter_mut().enumerate() {
+            let (o, d) = scene::ray(r);
+            *out = a.cast_ray(
+                tris_a,
+                &Ray::new(o, d, f32::INFINITY)?,
+                RayOrder::DepthFirst,
+                (),
+            )?;
+        }
+        Ok(())
+    })?;
+    for (r, hit) in rays.iter().enumerate() {
+        print_ray("aabb-dfs", r, *hit);
+    }
+
+    #[cfg(feature = "typical")]
+    typical::run(clock, tris_a, tris_b, &a, &b)?;
+    #[cfg(feature = "everything")]
+    everything::run(clock, tris_a, tris_b, &a, &b)?;
+    Ok(())
+}
+
+#[cfg(feature = "everything")]
+mod everything;
+#[cfg(feature = "typical")]
+mod typical;
