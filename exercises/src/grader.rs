@@ -5,6 +5,7 @@
 //! the origin, a sphere that misses a point by rounding, a partition along a
 //! fixed axis, and so on.
 
+use crate::reference::Reference;
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Node, Sphere, TopDown};
@@ -30,7 +31,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 13] = [
+pub const EXERCISES: [(u32, &str); 14] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -44,6 +45,7 @@ pub const EXERCISES: [(u32, &str); 13] = [
     (11, "implicit array: index arithmetic"),
     (12, "preorder layout: convert a tree"),
     (13, "quantize a box conservatively"),
+    (14, "sizing static buffers"),
 ];
 
 /// A score for one exercise.
@@ -726,7 +728,66 @@ pub fn checks() -> Vec<Check> {
                     && quantized_contains(e, &p, &flat)
             },
         },
+        // Exercise 14
+        Check {
+            exercise: 14,
+            name: "build memory: nodes and indices, for n = 0, 1 and many",
+            points: 4,
+            run: |e| {
+                [(0, 32), (1, 32), (2, 32), (256, 32), (1000, 16), (77, 92)]
+                    .iter()
+                    .all(|&(n, s)| {
+                        let want = if n == 0 { 0 } else { (2 * n - 1) * s + 4 * n };
+                        e.top_down_bytes(n, s) == want
+                    })
+            },
+        },
+        Check {
+            exercise: 14,
+            name: "pair stack bound: equal depths and leaves",
+            points: 3,
+            run: |e| {
+                e.pair_stack_bound(0, 0) == 1
+                    && e.pair_stack_bound(1, 1) == 4
+                    && e.pair_stack_bound(7, 7) == 22
+            },
+        },
+        Check {
+            exercise: 14,
+            name: "pair stack bound: different depths, and enough for a real traversal",
+            points: 3,
+            run: |e| {
+                let formula = (0..40)
+                    .all(|a| (0..40).all(|b| e.pair_stack_bound(a, b) == a + b + a.min(b) + 1));
+                // Balanced trees of 64 and 16 boxes: the bound lets a
+                // stack-only traversal of exactly that size finish.
+                let (pa, pb) = (grid_boxes(64, 0.0), grid_boxes(16, 0.3));
+                let (mut na, mut nb) = ([Node::<Aabb>::EMPTY; 127], [Node::<Aabb>::EMPTY; 31]);
+                let (mut ia, mut ib) = ([0u32; 64], [0u32; 16]);
+                let cfg = TopDown::median().with_max_leaf_size(1);
+                let (Ok(ta), Ok(tb)) = (
+                    cfg.build(&pa, &mut na, &mut ia),
+                    cfg.build(&pb, &mut nb, &mut ib),
+                ) else {
+                    return false;
+                };
+                let bound = e.pair_stack_bound(ta.depth(), tb.depth());
+                let mut stack = vec![(0u32, 0u32); bound];
+                let mut out = Vec::new();
+                formula && Reference.stack_dfs(&ta, &pa, &tb, &pb, &mut stack, &mut out)
+            },
+        },
     ]
+}
+
+/// `n` unit boxes in a row of a grid, shifted by `shift`.
+fn grid_boxes(n: usize, shift: f32) -> Vec<Aabb> {
+    (0..n)
+        .map(|i| {
+            let o = Vec3::new((i % 8) as f32 + shift, (i / 8) as f32 + shift, 0.0);
+            Aabb::new(o, o + Vec3::ONE)
+        })
+        .collect()
 }
 
 /// Whether the quantized child decodes to a box containing it.
@@ -1066,7 +1127,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 150/150 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 160/160 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -1335,6 +1396,26 @@ mod tests {
                 _ => Reference.quantize(parent, child),
             }
         }
+
+        fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize {
+            match self.0 {
+                // Forgets the index array.
+                28 => bvhkit::max_nodes(n) * node_bytes,
+                // One node per primitive plus one, as for a list.
+                29 => (n + 1) * node_bytes + 4 * n,
+                _ => Reference.top_down_bytes(n, node_bytes),
+            }
+        }
+
+        fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize {
+            match self.0 {
+                // Counts one waiting pair per step, as if only one side opened.
+                30 => depth_a + depth_b + 1,
+                // The larger depth three times: enough, but not the bound.
+                31 => 3 * depth_a.max(depth_b) + 1,
+                _ => Reference.pair_stack_bound(depth_a, depth_b),
+            }
+        }
     }
 
     #[test]
@@ -1367,6 +1448,10 @@ mod tests {
             (25, 13),
             (26, 13),
             (27, 13),
+            (28, 14),
+            (29, 14),
+            (30, 14),
+            (31, 14),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(

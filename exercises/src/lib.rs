@@ -116,6 +116,16 @@ pub trait Exercises {
     /// child.min[k]` and `dequantize(hi[k]) >= child.max[k]`, and as tight as
     /// possible (the largest such `lo`, the smallest such `hi`).
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]);
+
+    /// Exercise 14a: bytes of `static` storage a top-down build over `n`
+    /// primitives needs: the most nodes a binary tree over `n` primitives can
+    /// have, `node_bytes` each, plus one `u32` index per primitive.
+    fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize;
+    /// Exercise 14b: the most node pairs that can wait on the explicit stack
+    /// of a two-tree traversal of two binary trees `depth_a` and `depth_b`
+    /// deep (a step opens one side, leaving one pair waiting, or both sides,
+    /// leaving three), counting the pair being expanded.
+    fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

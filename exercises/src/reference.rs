@@ -188,6 +188,14 @@ impl Exercises for Reference {
         }
     }
 
+    fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize {
+        bvhkit::max_nodes(n) * node_bytes + n * 4
+    }
+
+    fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize {
+        bvhkit::query::pair_stack_bound((2, depth_a), (2, depth_b))
+    }
+
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
         let (mut lo, mut hi) = ([0u8; 3], [255u8; 3]);
         for k in 0..3 {

@@ -154,4 +154,18 @@ impl Exercises for Student {
         let _ = (parent, child);
         todo!("exercise 13")
     }
+
+    fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize {
+        // Hint: how many nodes has a binary tree with n leaves of one
+        // primitive each? Mind n = 0.
+        let _ = (n, node_bytes);
+        todo!("exercise 14a")
+    }
+
+    fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize {
+        // Hint: a path from the root pair has at most min(depth_a, depth_b)
+        // steps that open both sides; every other step opens one.
+        let _ = (depth_a, depth_b);
+        todo!("exercise 14b")
+    }
 }
