@@ -9,10 +9,12 @@
 //! refers to nodes by index into it.
 //!
 //! Cargo features (all on by default) let an embedded build compile only what
-//! it uses: `sphere`, `obb`, `kdop` (volume types), `bottom-up`, `insertion`
-//! (builders beyond top-down) and `layouts` (the compact tree
-//! representations). With `default-features = false` the crate keeps AABB
-//! trees, the top-down builder, every query and the collision system.
+//! it uses: `strategies` (every top-down partition strategy, axis choice and
+//! split point beyond binned SAH), `sphere`, `obb`, `kdop` (volume types),
+//! `bottom-up`, `insertion` (builders beyond top-down) and `layouts` (the
+//! compact tree representations). With `default-features = false` the crate
+//! keeps AABB trees, the binned-SAH top-down builder, every query and the
+//! collision system.
 //!
 //! Data flows one way: primitives -> [`TopDown`] builder -> [`Bvh`] ->
 //! queries ([`Bvh::overlapping`], [`overlapping_pairs`]) -> your callback.

@@ -12,7 +12,12 @@
 //! The smaller half is processed next and the larger one pushed, so the stack
 //! never holds more than `log2(n) + 1` entries. The default configuration
 //! (binned SAH over x, y and z) has a dedicated single-pass binning loop; every
-//! other combination goes through the general evaluator.
+//! other combination goes through the general evaluator, which is compiled
+//! only with the `strategies` cargo feature (on by default): without it, the
+//! builder keeps the binned-SAH fast path and the object-median fallback,
+//! about a third of the code, for firmware that wants small flash.
+// Without `strategies`, the general evaluator is compiled but unreachable.
+#![cfg_attr(not(feature = "strategies"), allow(dead_code))]
 
 use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
 use crate::bv::BoxSet;
@@ -211,7 +216,27 @@ impl TopDown {
         max_nodes(n) * core::mem::size_of::<Node<B>>() + self.index_capacity(n) * 4
     }
 
+    /// Whether this configuration takes the binned-SAH fast path only, the
+    /// one a build without the `strategies` feature supports: `Bins(k)`,
+    /// `SurfaceArea`, and x/y/z or the longest axis.
+    pub const fn is_binned_sah(&self) -> bool {
+        matches!(
+            (self.split, self.axis, self.partition),
+            (
+                SplitPoint::Bins(_),
+                AxisChoice::BestOfXyz | AxisChoice::Longest,
+                Partition::SurfaceArea
+            )
+        )
+    }
+
     fn check(&self) -> Result<(), Error> {
+        if !cfg!(feature = "strategies") && !self.is_binned_sah() {
+            return Err(Error::InvalidConfig(
+                "only binned SAH (Bins, SurfaceArea, BestOfXyz or Longest) is compiled: \
+                 enable bvhkit's `strategies` feature for the others",
+            ));
+        }
         if self.stop.max_leaf_size == 0 {
             return Err(Error::InvalidConfig("max_leaf_size must be at least 1"));
         }
@@ -505,7 +530,7 @@ impl TopDown {
             }
         }
         // The object median always separates by count, even identical centroids.
-        let dir = directions(src, range, task, bv, AxisChoice::Longest).axes[0];
+        let dir = longest_direction(task);
         let forced = apply(
             src,
             range,
@@ -624,6 +649,17 @@ fn cost<B: BoundingVolume>(
     }
 }
 
+/// The coordinate axis along which the centroids spread most (the boxes, when
+/// every centroid coincides).
+fn longest_direction(task: &Task) -> Vec3 {
+    let c = if task.centroids.extent().max_element() > 0.0 {
+        task.centroids
+    } else {
+        task.bounds
+    };
+    crate::bv::Axes::XYZ.axes[c.longest_axis()]
+}
+
 /// Candidate directions for an axis choice (at most 13).
 fn directions<S: Source, B: BoundingVolume>(
     src: &S,
@@ -644,14 +680,7 @@ fn directions<S: Source, B: BoundingVolume>(
         AxisChoice::Y => one(Vec3::Y),
         AxisChoice::Z => one(Vec3::Z),
         AxisChoice::BestOfXyz => Axes::XYZ,
-        AxisChoice::Longest => {
-            let c = if task.centroids.extent().max_element() > 0.0 {
-                task.centroids
-            } else {
-                task.bounds
-            };
-            one(Axes::XYZ.axes[c.longest_axis()])
-        }
+        AxisChoice::Longest => one(longest_direction(task)),
         AxisChoice::Variance => one(principal_direction(src, range)),
         AxisChoice::DistantPoints => one(distant_direction(src, range)),
         AxisChoice::ParentVolume => bv.axes(),
@@ -749,7 +778,14 @@ fn plan<S: Source, B: BoundingVolume>(
             _ => plan_binned_sah::<S, MAX_BINS>(src, range, task, k, axes, norm),
         };
     }
-    plan_by_directions(src, range, scratch, task, bv, axis, split, partition, norm)
+    #[cfg(feature = "strategies")]
+    return plan_by_directions(src, range, scratch, task, bv, axis, split, partition, norm);
+    // `check` refused every other configuration.
+    #[cfg(not(feature = "strategies"))]
+    {
+        let _ = (scratch, bv);
+        None
+    }
 }
 
 /// Every other combination: candidate directions, each scored by its split
@@ -1268,5 +1304,70 @@ impl<S: Source> BoxSet for SourceBoxes<'_, S> {
     }
     fn aabb(&self, i: usize) -> Aabb {
         self.src.bounds(self.items[i])
+    }
+}
+
+#[cfg(test)]
+mod feature_tests {
+    use super::*;
+    use crate::Triangle;
+
+    fn tris() -> [Triangle; 40] {
+        core::array::from_fn(|i| {
+            let o = Vec3::new((i % 8) as f32, (i / 8) as f32, 0.0);
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+    }
+
+    /// Binned SAH builds in every feature set, with any bin count or axis.
+    #[test]
+    fn binned_sah_builds_with_and_without_strategies() {
+        let prims = tris();
+        for cfg in [
+            TopDown::sah(),
+            TopDown {
+                split: SplitPoint::Bins(8),
+                ..TopDown::sah()
+            },
+            TopDown {
+                axis: AxisChoice::Longest,
+                ..TopDown::sah()
+            },
+        ] {
+            assert!(cfg.is_binned_sah());
+            let mut nodes = [Node::<Aabb>::ZERO; 79];
+            let mut idx = [0u32; 40];
+            let t = cfg.build(&prims, &mut nodes, &mut idx).unwrap();
+            assert_eq!(t.primitive_count(), 40);
+        }
+    }
+
+    /// Other configurations build only with `strategies`; without it they
+    /// are a clear error, never a silently different tree.
+    #[test]
+    fn other_strategies_need_the_feature() {
+        let prims = tris();
+        for cfg in [
+            TopDown::median(),
+            TopDown::sah_sweep(),
+            TopDown {
+                axis: AxisChoice::X,
+                ..TopDown::sah()
+            },
+            TopDown {
+                partition: Partition::Volume,
+                ..TopDown::sah()
+            },
+        ] {
+            assert!(!cfg.is_binned_sah());
+            let mut nodes = [Node::<Aabb>::ZERO; 79];
+            let mut idx = [0u32; 80];
+            let r = cfg.build(&prims, &mut nodes, &mut idx);
+            if cfg!(feature = "strategies") {
+                assert_eq!(r.unwrap().primitive_count(), 40);
+            } else {
+                assert!(matches!(r, Err(Error::InvalidConfig(_))), "{cfg:?}");
+            }
+        }
     }
 }

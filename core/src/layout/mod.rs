@@ -279,12 +279,17 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
     crate::tree::hierarchy::check_query(bvh, bvh.primitive_count())?;
     let nodes = bvh.nodes();
     let mut next = 1u32;
-    // (canonical nodes of the record's slots, how many, record)
-    let mut stack = Stack::<([u32; MAX_CHILDREN], usize, u32), DFS_STACK>::with(
-        ([0; MAX_CHILDREN], 1, 0),
-        bvh.depth(),
-    );
-    while let Some((group, len, rec)) = stack.pop() {
+    // (canonical node whose collapse fills the record, record); the header
+    // record 0 holds the root alone. The collapse is recomputed on pop, so an
+    // entry is 8 bytes, not the 24 of the whole group.
+    const HEADER: u32 = u32::MAX;
+    let mut stack = Stack::<(u32, u32), DFS_STACK>::with((HEADER, 0), bvh.depth());
+    while let Some((parent, rec)) = stack.pop() {
+        let (group, len) = if parent == HEADER {
+            ([0; MAX_CHILDREN], 1)
+        } else {
+            collapse(bvh, parent)
+        };
         let mut slots = [SlotSource {
             node: 0,
             link: 0,
@@ -302,7 +307,7 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
                 }
             } else {
                 let kids = collapse(bvh, c);
-                stack.push((kids.0, kids.1, next))?;
+                stack.push((c, next))?;
                 if next >= u32::MAX / 4 {
                     return Err(Error::FieldOverflow {
                         field: "wide record index",

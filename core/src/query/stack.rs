@@ -13,6 +13,7 @@ pub(crate) struct Stack<T, const N: usize> {
 
 impl<T: Copy, const N: usize> Stack<T, N> {
     /// A stack holding `first`, for a tree of `depth` (reported on overflow).
+    #[inline(always)] // built in the caller's frame, not copied into it
     pub(crate) fn with(first: T, depth: usize) -> Self {
         Stack {
             items: [first; N],
