@@ -7,12 +7,12 @@ use core::ptr::addr_of_mut;
 use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, DynNode, Insertion};
 use bvhkit::layout::{QuantNode, QuantizedWide};
 use bvhkit::{
-    max_nodes, Aabb, Bvh, Descent, Dop14, Node, Obb, PairTraversal, Pairs, Query, Ray, RayOrder,
-    TopDown, Triangle,
+    max_nodes, Aabb, Bvh, Descent, Dop14, Node, Obb, PairTraversal, Pairs, RayOrder, TopDown,
+    Triangle,
 };
 
-use crate::scene::{self, N};
-use crate::{print_pairs, print_ray, Clock};
+use crate::scene::N;
+use crate::{pairs, rays, Clock};
 
 const CLUSTERS: usize = BottomUp::scratch_len(N).0;
 const WORK: usize = BottomUp::scratch_len(N).1;
@@ -31,26 +31,6 @@ static mut DYN: [DynNode<Aabb>; STORAGE] = [DynNode::EMPTY; STORAGE];
 static mut ORDER: [u32; Insertion::scratch_len(N).1] = [0; Insertion::scratch_len(N).1];
 static mut QUANT: [QuantNode; QuantizedWide::max_records(N)] =
     [QuantNode::ZERO; QuantizedWide::max_records(N)];
-
-/// Counts and digests the pairs of one configuration and prints them.
-fn report<A, H>(
-    clock: &Clock,
-    label: &str,
-    q: Pairs<'_, A, H, Triangle, Triangle, Descent>,
-    t: PairTraversal,
-) -> Result<(), bvhkit::Error>
-where
-    A: bvhkit::Hierarchy,
-    H: bvhkit::Hierarchy<Bv = A::Bv>,
-{
-    let mut digest = 0u32;
-    let count = clock.time(label, || {
-        q.traversal(t)
-            .for_each(|i, j| digest = digest.wrapping_add(scene::mix(i, j)))
-    })?;
-    print_pairs("pairs", label, count, digest);
-    Ok(())
-}
 
 #[inline(never)]
 pub fn run(
@@ -83,27 +63,21 @@ pub fn run(
     for rule in Descent::ALL {
         for t in PairTraversal::all(rule) {
             let name = join(&mut label, t.name(), rule.name());
-            report(clock, name, Pairs::new(a, tris_a, b, tris_b), t)?;
+            pairs(clock, "pairs", name, |f| {
+                Pairs::new(a, tris_a, b, tris_b).traversal(t).for_each(f)
+            })?;
         }
     }
 
     // Other volumes: B's OBB and 14-DOP trees against each other.
     let o = clock.time("build-sah-obb", || TopDown::sah().build(tris_b, obbs, i0))?;
-    let mut digest = 0u32;
-    let count = clock.time("pairs-obb", || {
-        bvhkit::overlapping_pairs(&o, tris_b, &o, tris_b, Descent::Larger, |i, j| {
-            digest = digest.wrapping_add(scene::mix(i, j))
-        })
+    pairs(clock, "selfb", "obb-sah-dfs", |f| {
+        bvhkit::overlapping_pairs(&o, tris_b, &o, tris_b, Descent::Larger, f)
     })?;
-    print_pairs("selfb", "obb-sah-dfs", count, digest);
     let d = clock.time("build-sah-dop14", || TopDown::sah().build(tris_b, dops, i1))?;
-    let mut digest = 0u32;
-    let count = clock.time("pairs-dop14", || {
-        bvhkit::overlapping_pairs(&d, tris_b, &d, tris_b, Descent::Simultaneous, |i, j| {
-            digest = digest.wrapping_add(scene::mix(i, j))
-        })
+    pairs(clock, "selfb", "dop14-sah-simultaneous", |f| {
+        bvhkit::overlapping_pairs(&d, tris_b, &d, tris_b, Descent::Simultaneous, f)
     })?;
-    print_pairs("selfb", "dop14-sah-simultaneous", count, digest);
 
     // Other builders for A, queried against B's SAH tree.
     let mut scratch = BottomUpScratch {
@@ -114,39 +88,20 @@ pub fn run(
     let p = clock.time("build-ploc", || {
         BottomUp::default().build(tris_a, ploc, i2, &mut scratch)
     })?;
-    report(
-        clock,
-        "ploc-larger",
-        Pairs::new(&p, tris_a, b, tris_b),
-        PairTraversal::default(),
-    )?;
+    pairs(clock, "pairs", "ploc-larger", |f| {
+        bvhkit::overlapping_pairs(&p, tris_a, b, tris_b, Descent::Larger, f)
+    })?;
     let ins = clock.time("build-insertion", || {
         Insertion::default().build(tris_a, dyn_nodes, order, inserted, i3)
     })?;
-    report(
-        clock,
-        "insertion-larger",
-        Pairs::new(&ins, tris_a, b, tris_b),
-        PairTraversal::default(),
-    )?;
+    pairs(clock, "pairs", "insertion-larger", |f| {
+        bvhkit::overlapping_pairs(&ins, tris_a, b, tris_b, Descent::Larger, f)
+    })?;
 
     // Best-first rays, and rays on the quantized 4-wide layout.
+    rays(clock, "aabb-best-first", a, tris_a, RayOrder::BestFirst)?;
     let q = clock.time("convert-quantized", || QuantizedWide::from_bvh(a, quant))?;
-    for (label, order, quantized) in [
-        ("aabb-best-first", RayOrder::BestFirst, false),
-        ("quantized-dfs", RayOrder::DepthFirst, true),
-    ] {
-        for r in 0..scene::RAYS {
-            let (o, dir) = scene::ray(r);
-            let ray = Ray::new(o, dir, f32::INFINITY)?;
-            let hit = if quantized {
-                q.cast_ray(tris_a, &ray, order, ())?
-            } else {
-                a.cast_ray(tris_a, &ray, order, ())?
-            };
-            print_ray(label, r, hit);
-        }
-    }
+    rays(clock, "quantized-dfs", &q, tris_a, RayOrder::DepthFirst)?;
     Ok(())
 }
 

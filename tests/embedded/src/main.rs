@@ -182,24 +182,56 @@ fn run(clock: &Clock) -> bool {
     }
 }
 
+/// Times a pair query (`query` reports each pair to its callback), then
+/// prints `kind label count digest`.
 #[cfg(feature = "minimal")]
-fn print_pairs(kind: &str, label: &str, count: usize, digest: u32) {
+fn pairs(
+    clock: &Clock,
+    kind: &str,
+    label: &str,
+    query: impl FnOnce(&mut dyn FnMut(u32, u32)) -> Result<usize, bvhkit::Error>,
+) -> Result<(), bvhkit::Error> {
+    let mut digest = 0u32;
+    let count = clock.time(label, || {
+        query(&mut |i, j| digest = digest.wrapping_add(scene::mix(i, j)))
+    })?;
     hprintln!("{} {} {} {:08x}", kind, label, count, digest);
+    Ok(())
 }
 
+/// Times the scene's rays on `tree` over object A, then prints each hit.
 #[cfg(feature = "minimal")]
-fn print_ray(label: &str, r: usize, hit: Option<bvhkit::Hit>) {
-    match hit {
-        Some(h) => hprintln!("ray {} {} {} {:08x}", label, r, h.prim, h.t.to_bits()),
-        None => hprintln!("ray {} {} none 0", label, r),
+fn rays<H: bvhkit::Hierarchy>(
+    clock: &Clock,
+    label: &str,
+    tree: &H,
+    tris: &[Triangle],
+    order: bvhkit::RayOrder,
+) -> Result<(), bvhkit::Error> {
+    use bvhkit::Query;
+    let mut hits = [None; scene::RAYS];
+    clock.time(label, || -> Result<(), bvhkit::Error> {
+        for (r, out) in hits.iter_mut().enumerate() {
+            let (o, d) = scene::ray(r);
+            let ray = bvhkit::Ray::new(o, d, f32::INFINITY)?;
+            *out = tree.cast_ray(tris, &ray, order, ())?;
+        }
+        Ok(())
+    })?;
+    for (r, hit) in hits.iter().enumerate() {
+        match hit {
+            Some(h) => hprintln!("ray {} {} {} {:08x}", label, r, h.prim, h.t.to_bits()),
+            None => hprintln!("ray {} {} none 0", label, r),
+        }
     }
+    Ok(())
 }
 
 #[cfg(feature = "minimal")]
 #[inline(never)]
 fn demo(clock: &Clock) -> Result<(), bvhkit::Error> {
     use buffers::*;
-    use bvhkit::{Descent, Ray, RayOrder, SplitPoint, TopDown};
+    use bvhkit::{Descent, RayOrder, SplitPoint, TopDown};
 
     // SAFETY: `demo` runs once; these are the only references to the buffers.
     let (tris_a, tris_b, nodes_a, nodes_b, index_a, index_b) = unsafe {
@@ -227,30 +259,10 @@ fn demo(clock: &Clock) -> Result<(), bvhkit::Error> {
     let b = clock.time("build-sah-b", || sah.build(tris_b, nodes_b, index_b))?;
     hprintln!("tree a nodes {} depth {}", a.node_count(), a.depth());
 
-    let mut digest = 0u32;
-    let count = clock.time("pairs-dfs", || {
-        bvhkit::overlapping_pairs(&a, tris_a, &b, tris_b, Descent::Larger, |i, j| {
-            digest = digest.wrapping_add(scene::mix(i, j))
-        })
+    pairs(clock, "pairs", "aabb-sah-dfs", |f| {
+        bvhkit::overlapping_pairs(&a, tris_a, &b, tris_b, Descent::Larger, f)
     })?;
-    print_pairs("pairs", "aabb-sah-dfs", count, digest);
-
-    let mut rays = [None; scene::RAYS];
-    clock.time("rays-dfs", || -> Result<(), bvhkit::Error> {
-        for (r, out) in rays.iter_mut().enumerate() {
-            let (o, d) = scene::ray(r);
-            *out = a.cast_ray(
-                tris_a,
-                &Ray::new(o, d, f32::INFINITY)?,
-                RayOrder::DepthFirst,
-                (),
-            )?;
-        }
-        Ok(())
-    })?;
-    for (r, hit) in rays.iter().enumerate() {
-        print_ray("aabb-dfs", r, *hit);
-    }
+    rays(clock, "aabb-dfs", &a, tris_a, RayOrder::DepthFirst)?;
 
     #[cfg(feature = "typical")]
     typical::run(clock, tris_a, tris_b, &a, &b)?;

@@ -4,13 +4,11 @@
 use core::ptr::addr_of_mut;
 
 use bvhkit::layout::{Wide, WideNode};
-use bvhkit::{
-    max_nodes, Aabb, Bvh, Node, Pairs, Query, Ray, RayOrder, Rigid, Sphere, TopDown, Triangle,
-};
+use bvhkit::{max_nodes, Aabb, Bvh, Node, Pairs, RayOrder, Rigid, Sphere, TopDown, Triangle};
 use cortex_m_semihosting::hprintln;
 
 use crate::scene::{self, N};
-use crate::{print_pairs, print_ray, Clock};
+use crate::{pairs, rays, Clock};
 
 static mut SPHERES: [Node<Sphere>; max_nodes(N)] = [Node::ZERO; max_nodes(N)];
 static mut SPHERE_INDEX: [u32; N] = [0; N];
@@ -35,25 +33,19 @@ pub fn run(
 
     let (rotation, shift) = scene::motion();
     let motion = Rigid::new(rotation, shift)?;
-    let mut digest = 0u32;
-    let count = clock.time("exact-moved", || {
+    pairs(clock, "exact", "aabb-moved", |f| {
         Pairs::new(a, tris_a, b, tris_b)
             .in_frame(motion)
             .exact()
-            .for_each(|i, j| digest = digest.wrapping_add(scene::mix(i, j)))
+            .for_each(f)
     })?;
-    print_pairs("exact", "aabb-moved", count, digest);
 
     let s = clock.time("build-sah-sphere", || {
         TopDown::sah().build(tris_a, spheres, sphere_index)
     })?;
-    let mut digest = 0u32;
-    let count = clock.time("pairs-sphere", || {
-        bvhkit::overlapping_pairs(&s, tris_a, &s, tris_a, bvhkit::Descent::Larger, |i, j| {
-            digest = digest.wrapping_add(scene::mix(i, j))
-        })
+    pairs(clock, "self", "sphere-sah-dfs", |f| {
+        bvhkit::overlapping_pairs(&s, tris_a, &s, tris_a, bvhkit::Descent::Larger, f)
     })?;
-    print_pairs("self", "sphere-sah-dfs", count, digest);
 
     hprintln!(
         "wide records {} of {}",
@@ -61,21 +53,6 @@ pub fn run(
         wide.len()
     );
     let w = clock.time("convert-wide", || Wide::from_bvh(a, wide))?;
-    let mut rays = [None; scene::RAYS];
-    clock.time("rays-wide", || -> Result<(), bvhkit::Error> {
-        for (r, out) in rays.iter_mut().enumerate() {
-            let (o, d) = scene::ray(r);
-            *out = w.cast_ray(
-                tris_a,
-                &Ray::new(o, d, f32::INFINITY)?,
-                RayOrder::DepthFirst,
-                (),
-            )?;
-        }
-        Ok(())
-    })?;
-    for (r, hit) in rays.iter().enumerate() {
-        print_ray("wide-dfs", r, *hit);
-    }
+    rays(clock, "wide-dfs", &w, tris_a, RayOrder::DepthFirst)?;
     Ok(())
 }
