@@ -717,7 +717,15 @@ impl Default for Insertion {
 impl Insertion {
     /// Buffer lengths for `n` primitives: `(storage, order)` = `(2n - 1, n)`
     /// (plus [`max_nodes`](crate::max_nodes)`(n)` nodes and `n` indices for
-    /// the output tree). A `const fn`, to size `static` buffers.
+    /// the output tree). A `const fn`, to size `static` buffers:
+    ///
+    /// ```
+    /// use bvhkit::build::{DynNode, Insertion};
+    /// use bvhkit::Aabb;
+    /// const STORAGE: usize = Insertion::scratch_len(64).0;
+    /// static STORAGE_NODES: [DynNode<Aabb>; STORAGE] = [DynNode::EMPTY; STORAGE];
+    /// assert_eq!((STORAGE, Insertion::scratch_len(64).1), (127, 64));
+    /// ```
     pub const fn scratch_len(n: usize) -> (usize, usize) {
         (crate::max_nodes(n), n)
     }

@@ -94,6 +94,12 @@ impl<'a> Wide<'a> {
     /// of the collapsed tree, at most `n - 1`, and one for a lone leaf): a
     /// `const fn` to size `static` storage; [`records_needed`](Self::records_needed)
     /// gives the exact count of a built tree.
+    ///
+    /// ```
+    /// use bvhkit::layout::{Wide, WideNode};
+    /// static mut RECORDS: [WideNode; Wide::max_records(256)] = [WideNode::ZERO; Wide::max_records(256)];
+    /// assert_eq!(Wide::max_records(256), 255);
+    /// ```
     pub const fn max_records(n: usize) -> usize {
         if n > 1 {
             n - 1
