@@ -6,7 +6,6 @@ use bvhkit_std::collide::{self, CollideOptions, Input, Mode, TRAVERSALS, VOLUMES
 use bvhkit_std::tour::{self, TourOptions};
 use clap::builder::PossibleValuesParser;
 use clap::{Parser, Subcommand, ValueEnum};
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -198,6 +197,7 @@ fn main() -> ExitCode {
             runs,
             json,
         } => {
+            let bar = spinner("loading and building");
             let (name, tris) = match &mesh {
                 Some(p) => match bvhkit_std::mesh::load(p) {
                     Ok(t) => (p.display().to_string(), t),
@@ -217,7 +217,9 @@ fn main() -> ExitCode {
                 leaf_size,
                 runs: runs as usize,
             };
-            match bvhkit_std::stats::run(&name, &tris, &opts) {
+            let stats = bvhkit_std::stats::run(&name, &tris, &opts);
+            bar.finish_and_clear();
+            match stats {
                 Ok(r) if json => {
                     if !print_json(&r) {
                         return ExitCode::FAILURE;
@@ -237,8 +239,7 @@ fn main() -> ExitCode {
             runs,
             json,
         } => {
-            let bar = indicatif::ProgressBar::new_spinner();
-            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+            let bar = spinner("measuring");
             let report = bvhkit_std::report::run(subdivisions, runs as usize, |what| {
                 bar.set_message(what.to_string())
             });
@@ -278,15 +279,14 @@ fn main() -> ExitCode {
             runs,
             json,
         } => {
-            eprintln!("building the rock pair ({subdivisions} subdivisions) and every layout...");
+            let bar = spinner(&format!(
+                "building the rock pair ({subdivisions} subdivisions) and measuring every layout"
+            ));
             let (a, b) = bvhkit_std::scene::rock_pair(subdivisions);
-            let rows = match bvhkit_std::layouts::measure(
-                &a,
-                &b,
-                &bvhkit::TopDown::sah(),
-                rays,
-                runs as usize,
-            ) {
+            let rows =
+                bvhkit_std::layouts::measure(&a, &b, &bvhkit::TopDown::sah(), rays, runs as usize);
+            bar.finish_and_clear();
+            let rows = match rows {
                 Ok(r) => r,
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -320,11 +320,9 @@ fn main() -> ExitCode {
                 subdivisions,
                 runs: runs as usize,
             };
-            let report = tour::run(opts, |what| {
-                eprint!("\rmeasuring {what:<24}");
-                let _ = std::io::stderr().flush();
-            });
-            eprint!("\r{:<40}\r", "");
+            let bar = spinner("measuring");
+            let report = tour::run(opts, |what| bar.set_message(format!("measuring {what}")));
+            bar.finish_and_clear();
             let report = match report {
                 Ok(r) => r,
                 Err(e) => {
@@ -361,6 +359,7 @@ fn main() -> ExitCode {
             verify,
             json,
         } => {
+            let bar = spinner("loading, building and colliding");
             let input = match a {
                 Some(a) => {
                     let b_path = b.clone().unwrap_or_else(|| a.clone());
@@ -404,7 +403,9 @@ fn main() -> ExitCode {
                 runs: runs as usize,
                 verify,
             };
-            let report = match collide::run(&input, &opts) {
+            let report = collide::run(&input, &opts);
+            bar.finish_and_clear();
+            let report = match report {
                 Ok(r) => r,
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -425,4 +426,15 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// A spinner on stderr for anything that may take more than a second; it
+/// draws only when stderr is a terminal, so logs and pipes stay clean.
+fn spinner(message: &str) -> indicatif::ProgressBar {
+    // Cleared when dropped too, so an early error return leaves no stale line.
+    let bar =
+        indicatif::ProgressBar::new_spinner().with_finish(indicatif::ProgressFinish::AndClear);
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar.set_message(message.to_string());
+    bar
 }
