@@ -83,14 +83,97 @@ pub fn orient2(a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8 {
     sign(orient2d(c2(a, k), c2(b, k), c2(c, k)))
 }
 
+/// Where the triangle test's orientation signs come from. The test's logic
+/// is the same for all; only [`ExactSigns`] makes its answer exact. The
+/// others exist to measure what exactness buys (`bvhkit bench`, book chapter
+/// "Robustness"): they evaluate the same determinants in plain floating
+/// point, which gets the sign wrong when a point is nearly on a plane.
+pub trait Orientation: Copy {
+    /// Sign of `det[b - a, c - a, d - a]` (see [`orient3`]).
+    fn orient3(self, a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> i8;
+    /// Sign of the `k`-th component of `(b - a) × (c - a)` (see [`orient2`]).
+    fn orient2(self, a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8;
+}
+
+/// Exact signs (Shewchuk's adaptive predicates): the library's choice.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactSigns;
+
+/// The determinants in `f64`, without error bounds: exact only while the
+/// products fit 53 bits.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct F64Signs;
+
+/// The determinants in `f32`, as a naive implementation computes them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct F32Signs;
+
+impl Orientation for ExactSigns {
+    #[inline]
+    fn orient3(self, a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> i8 {
+        orient3(a, b, c, d)
+    }
+    #[inline]
+    fn orient2(self, a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8 {
+        orient2(a, b, c, k)
+    }
+}
+
+impl Orientation for F64Signs {
+    #[inline]
+    fn orient3(self, a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> i8 {
+        let (a, b, c, d) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3(), d.as_dvec3());
+        sign((b - a).dot((c - a).cross(d - a)))
+    }
+    #[inline]
+    fn orient2(self, a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8 {
+        let (u, v) = plane_axes(k);
+        let (e, f) = (b.as_dvec3() - a.as_dvec3(), c.as_dvec3() - a.as_dvec3());
+        sign(e[u] * f[v] - e[v] * f[u])
+    }
+}
+
+impl Orientation for F32Signs {
+    #[inline]
+    fn orient3(self, a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> i8 {
+        sign((b - a).dot((c - a).cross(d - a)) as f64)
+    }
+    #[inline]
+    fn orient2(self, a: Vec3, b: Vec3, c: Vec3, k: usize) -> i8 {
+        let (u, v) = plane_axes(k);
+        let (e, f) = (b - a, c - a);
+        sign((e[u] * f[v] - e[v] * f[u]) as f64)
+    }
+}
+
 /// Exact triangle–triangle intersection (closed triangles, touching counts).
 /// Zero-area triangles are treated as the segment or point they are.
 pub fn triangles_intersect(t1: &Triangle, t2: &Triangle) -> bool {
-    match (degenerate(t1), degenerate(t2)) {
-        (None, None) => guigue_devillers(t1, t2),
-        (None, Some(s)) => segment_triangle(s, t1),
-        (Some(s), None) => segment_triangle(s, t2),
-        (Some(s1), Some(s2)) => segments_intersect(s1, s2),
+    triangles_intersect_with(t1, t2, ExactSigns)
+}
+
+/// The same test with the orientation signs of `o`: exact with
+/// [`ExactSigns`], approximate with [`F64Signs`] or [`F32Signs`].
+///
+/// ```
+/// use bvhkit::narrow::{triangles_intersect_with, ExactSigns, F32Signs};
+/// use bvhkit::Triangle;
+/// use glam::Vec3;
+/// // A vertex resting on a face, far from the origin: the f32 determinant
+/// // rounds, the exact sign does not.
+/// let o = Vec3::new(1000.1, 2000.3, -511.7);
+/// let floor = Triangle::new(o, o + Vec3::new(3.7, 0.1, 0.0), o + Vec3::new(0.3, 2.9, 0.0));
+/// let tip = o + Vec3::new(1.1, 0.9, 0.0);
+/// let post = Triangle::new(tip, tip + Vec3::new(0.2, 0.1, 1.3), tip + Vec3::new(-0.1, 0.3, 1.1));
+/// assert_eq!(triangles_intersect_with(&floor, &post, ExactSigns), bvhkit::narrow::triangles_intersect(&floor, &post));
+/// let _maybe_wrong = triangles_intersect_with(&floor, &post, F32Signs);
+/// ```
+pub fn triangles_intersect_with<O: Orientation>(t1: &Triangle, t2: &Triangle, o: O) -> bool {
+    match (degenerate(t1, o), degenerate(t2, o)) {
+        (None, None) => guigue_devillers(t1, t2, o),
+        (None, Some(s)) => segment_triangle(s, t1, o),
+        (Some(s), None) => segment_triangle(s, t2, o),
+        (Some(s1), Some(s2)) => segments_intersect(s1, s2, o),
     }
 }
 
@@ -102,9 +185,9 @@ pub fn triangles_intersect_by_edges(t1: &Triangle, t2: &Triangle) -> bool {
     let edges_meet = |s: &Triangle, t: &Triangle| {
         (0..3).any(|i| {
             let e = [s.v[i], s.v[(i + 1) % 3]];
-            match degenerate(t) {
-                None => segment_triangle(e, t),
-                Some(s) => segments_intersect(e, s),
+            match degenerate(t, ExactSigns) {
+                None => segment_triangle(e, t, ExactSigns),
+                Some(s) => segments_intersect(e, s, ExactSigns),
             }
         })
     };
@@ -114,10 +197,10 @@ pub fn triangles_intersect_by_edges(t1: &Triangle, t2: &Triangle) -> bool {
 /// What a zero-area triangle degenerates to, decided exactly: `None` for a
 /// proper triangle, else the segment between its extreme corners (both ends
 /// equal for a point).
-fn degenerate(t: &Triangle) -> Option<[Vec3; 2]> {
+fn degenerate<O: Orientation>(t: &Triangle, o: O) -> Option<[Vec3; 2]> {
     let [a, b, c] = t.v;
     // The cross product is zero iff all three projected orientations are.
-    if (0..3).any(|k| orient2(a, b, c, k) != 0) {
+    if (0..3).any(|k| o.orient2(a, b, c, k) != 0) {
         return None;
     }
     // Collinear: the extreme points along an axis where they differ.
@@ -136,27 +219,27 @@ fn degenerate(t: &Triangle) -> Option<[Vec3; 2]> {
 
 /// Guigue & Devillers (2003) for two non-degenerate triangles. Every branch
 /// reads one exact orientation sign.
-fn guigue_devillers(t1: &Triangle, t2: &Triangle) -> bool {
+fn guigue_devillers<O: Orientation>(t1: &Triangle, t2: &Triangle, o: O) -> bool {
     let [p1, q1, r1] = t1.v;
     let [p2, q2, r2] = t2.v;
     let (dp1, dq1, dr1) = (
-        orient3(p2, q2, r2, p1),
-        orient3(p2, q2, r2, q1),
-        orient3(p2, q2, r2, r1),
+        o.orient3(p2, q2, r2, p1),
+        o.orient3(p2, q2, r2, q1),
+        o.orient3(p2, q2, r2, r1),
     );
     if strictly_one_side(dp1, dq1, dr1) {
         return false;
     }
     let (dp2, dq2, dr2) = (
-        orient3(p1, q1, r1, p2),
-        orient3(p1, q1, r1, q2),
-        orient3(p1, q1, r1, r2),
+        o.orient3(p1, q1, r1, p2),
+        o.orient3(p1, q1, r1, q2),
+        o.orient3(p1, q1, r1, r2),
     );
     if strictly_one_side(dp2, dq2, dr2) {
         return false;
     }
     if dp1 == 0 && dq1 == 0 && dr1 == 0 {
-        return coplanar(t1, t2);
+        return coplanar(t1, t2, o);
     }
     // Rotate triangle 1 so that p1 is alone on its side of plane 2, and swap
     // q2/r2 so that p1 is on the positive side.
@@ -164,36 +247,36 @@ fn guigue_devillers(t1: &Triangle, t2: &Triangle) -> bool {
     let d2s = (dp2, dr2, dq2);
     if dp1 > 0 {
         if dq1 > 0 {
-            tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2)
+            tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2, o)
         } else if dr1 > 0 {
-            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2)
+            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2, o)
         } else {
-            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2)
+            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2, o)
         }
     } else if dp1 < 0 {
         if dq1 < 0 {
-            tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2)
+            tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2, o)
         } else if dr1 < 0 {
-            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2)
+            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2, o)
         } else {
-            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2)
+            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2, o)
         }
     } else if dq1 < 0 {
         if dr1 >= 0 {
-            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2)
+            tri_tri_3d([q1, r1, p1], [p2, r2, q2], d2s, t1, t2, o)
         } else {
-            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2)
+            tri_tri_3d([p1, q1, r1], [p2, q2, r2], d2, t1, t2, o)
         }
     } else if dq1 > 0 {
         if dr1 > 0 {
-            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2)
+            tri_tri_3d([p1, q1, r1], [p2, r2, q2], d2s, t1, t2, o)
         } else {
-            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2)
+            tri_tri_3d([q1, r1, p1], [p2, q2, r2], d2, t1, t2, o)
         }
     } else if dr1 > 0 {
-        tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2)
+        tri_tri_3d([r1, p1, q1], [p2, q2, r2], d2, t1, t2, o)
     } else {
-        tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2)
+        tri_tri_3d([r1, p1, q1], [p2, r2, q2], d2s, t1, t2, o)
     }
 }
 
@@ -203,15 +286,16 @@ fn strictly_one_side(a: i8, b: i8, c: i8) -> bool {
 
 /// Second permutation step: put p2 alone on its side of plane 1, then compare
 /// the two intervals on the planes' common line with two orientation signs.
-fn tri_tri_3d(
+fn tri_tri_3d<O: Orientation>(
     [p1, q1, r1]: [Vec3; 3],
     [p2, q2, r2]: [Vec3; 3],
     (dp2, dq2, dr2): (i8, i8, i8),
     t1: &Triangle,
     t2: &Triangle,
+    o: O,
 ) -> bool {
     let check = |[p1, q1, r1]: [Vec3; 3], [p2, q2, r2]: [Vec3; 3]| {
-        orient3(q1, p2, p1, q2) <= 0 && orient3(p1, p2, r1, r2) <= 0
+        o.orient3(q1, p2, p1, q2) <= 0 && o.orient3(p1, p2, r1, r2) <= 0
     };
     if dp2 > 0 {
         if dq2 > 0 {
@@ -246,50 +330,50 @@ fn tri_tri_3d(
     } else if dr2 < 0 {
         check([p1, r1, q1], [r2, p2, q2])
     } else {
-        coplanar(t1, t2)
+        coplanar(t1, t2, o)
     }
 }
 
 /// Two coplanar, non-degenerate triangles: in the projection that keeps
 /// triangle 1 non-degenerate (then it is one-to-one on the common plane),
 /// they meet iff two edges cross or a vertex of one lies in the other.
-fn coplanar(t1: &Triangle, t2: &Triangle) -> bool {
-    let k = projection_axis(t1);
+fn coplanar<O: Orientation>(t1: &Triangle, t2: &Triangle, o: O) -> bool {
+    let k = projection_axis(t1, o);
     (0..3).any(|i| {
         let e = [t1.v[i], t1.v[(i + 1) % 3]];
-        (0..3).any(|j| segments_intersect_2d(e, [t2.v[j], t2.v[(j + 1) % 3]], k))
-    }) || point_in_triangle_2d(t1.v[0], t2, k)
-        || point_in_triangle_2d(t2.v[0], t1, k)
+        (0..3).any(|j| segments_intersect_2d(e, [t2.v[j], t2.v[(j + 1) % 3]], k, o))
+    }) || point_in_triangle_2d(t1.v[0], t2, k, o)
+        || point_in_triangle_2d(t2.v[0], t1, k, o)
 }
 
 /// An axis along which the (non-degenerate) triangle projects to a
 /// non-degenerate triangle.
-fn projection_axis(t: &Triangle) -> usize {
+fn projection_axis<O: Orientation>(t: &Triangle, o: O) -> usize {
     (0..3)
-        .find(|&k| orient2(t.v[0], t.v[1], t.v[2], k) != 0)
+        .find(|&k| o.orient2(t.v[0], t.v[1], t.v[2], k) != 0)
         .unwrap_or(2)
 }
 
 /// Segment (possibly a point) against a non-degenerate triangle.
-fn segment_triangle([s0, s1]: [Vec3; 2], t: &Triangle) -> bool {
+fn segment_triangle<O: Orientation>([s0, s1]: [Vec3; 2], t: &Triangle, o: O) -> bool {
     let [a, b, c] = t.v;
-    let (d0, d1) = (orient3(a, b, c, s0), orient3(a, b, c, s1));
+    let (d0, d1) = (o.orient3(a, b, c, s0), o.orient3(a, b, c, s1));
     if d0 * d1 > 0 {
         return false;
     }
     if d0 == 0 && d1 == 0 {
-        let k = projection_axis(t);
-        return point_in_triangle_2d(s0, t, k)
-            || point_in_triangle_2d(s1, t, k)
-            || (0..3).any(|i| segments_intersect_2d([s0, s1], [t.v[i], t.v[(i + 1) % 3]], k));
+        let k = projection_axis(t, o);
+        return point_in_triangle_2d(s0, t, k, o)
+            || point_in_triangle_2d(s1, t, k, o)
+            || (0..3).any(|i| segments_intersect_2d([s0, s1], [t.v[i], t.v[(i + 1) % 3]], k, o));
     }
     // The segment meets the plane in exactly one point; the line through it
     // passes through the closed triangle iff it is on the same side of all
     // three edges (zeros allowed).
     let e = [
-        orient3(s0, s1, a, b),
-        orient3(s0, s1, b, c),
-        orient3(s0, s1, c, a),
+        o.orient3(s0, s1, a, b),
+        o.orient3(s0, s1, b, c),
+        o.orient3(s0, s1, c, a),
     ];
     e.iter().all(|&x| x >= 0) || e.iter().all(|&x| x <= 0)
 }
@@ -297,16 +381,21 @@ fn segment_triangle([s0, s1]: [Vec3; 2], t: &Triangle) -> bool {
 /// Two segments (either may be a point) in 3-D. Segments that meet are
 /// coplanar; coplanar segments meet iff they meet in all three axis
 /// projections (at least one projection is one-to-one on their plane).
-fn segments_intersect(s: [Vec3; 2], t: [Vec3; 2]) -> bool {
-    orient3(s[0], s[1], t[0], t[1]) == 0 && (0..3).all(|k| segments_intersect_2d(s, t, k))
+fn segments_intersect<O: Orientation>(s: [Vec3; 2], t: [Vec3; 2], o: O) -> bool {
+    o.orient3(s[0], s[1], t[0], t[1]) == 0 && (0..3).all(|k| segments_intersect_2d(s, t, k, o))
 }
 
 /// Closed segments in the projection along axis `k`.
-fn segments_intersect_2d([p1, q1]: [Vec3; 2], [p2, q2]: [Vec3; 2], k: usize) -> bool {
-    let o1 = orient2(p1, q1, p2, k);
-    let o2 = orient2(p1, q1, q2, k);
-    let o3 = orient2(p2, q2, p1, k);
-    let o4 = orient2(p2, q2, q1, k);
+fn segments_intersect_2d<O: Orientation>(
+    [p1, q1]: [Vec3; 2],
+    [p2, q2]: [Vec3; 2],
+    k: usize,
+    o: O,
+) -> bool {
+    let o1 = o.orient2(p1, q1, p2, k);
+    let o2 = o.orient2(p1, q1, q2, k);
+    let o3 = o.orient2(p2, q2, p1, k);
+    let o4 = o.orient2(p2, q2, q1, k);
     if o1 * o2 < 0 && o3 * o4 < 0 {
         return true;
     }
@@ -325,14 +414,14 @@ fn within(p: Vec3, a: Vec3, b: Vec3, k: usize) -> bool {
 }
 
 /// Closed, non-degenerate triangle in projection `k`.
-fn point_in_triangle_2d(p: Vec3, t: &Triangle, k: usize) -> bool {
+fn point_in_triangle_2d<O: Orientation>(p: Vec3, t: &Triangle, k: usize, o: O) -> bool {
     let [a, b, c] = t.v;
-    let o = [
-        orient2(a, b, p, k),
-        orient2(b, c, p, k),
-        orient2(c, a, p, k),
+    let s = [
+        o.orient2(a, b, p, k),
+        o.orient2(b, c, p, k),
+        o.orient2(c, a, p, k),
     ];
-    o.iter().all(|&x| x >= 0) || o.iter().all(|&x| x <= 0)
+    s.iter().all(|&x| x >= 0) || s.iter().all(|&x| x <= 0)
 }
 
 /// The two kept axes when projecting along `k`, in cyclic order so that the
@@ -392,13 +481,16 @@ mod tests {
     #[test]
     fn degenerate_shapes_are_recognised() {
         let seg = Triangle::new(Vec3::ZERO, Vec3::splat(2.0), Vec3::ONE);
-        assert_eq!(degenerate(&seg), Some([Vec3::ZERO, Vec3::splat(2.0)]));
         assert_eq!(
-            degenerate(&Triangle::new(Vec3::ONE, Vec3::ONE, Vec3::ONE)),
+            degenerate(&seg, ExactSigns),
+            Some([Vec3::ZERO, Vec3::splat(2.0)])
+        );
+        assert_eq!(
+            degenerate(&Triangle::new(Vec3::ONE, Vec3::ONE, Vec3::ONE), ExactSigns),
             Some([Vec3::ONE; 2])
         );
         assert_eq!(
-            degenerate(&Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)),
+            degenerate(&Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y), ExactSigns),
             None
         );
     }

@@ -10,6 +10,7 @@ pub mod cost;
 pub mod layouts;
 pub mod mesh;
 pub mod motion;
+pub mod near_misses;
 pub mod report;
 pub mod scene;
 pub mod stats;

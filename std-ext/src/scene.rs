@@ -58,17 +58,17 @@ pub fn rock_pair(subdivisions: u32) -> (Vec<Triangle>, Vec<Triangle>) {
 }
 
 /// A small deterministic generator (SplitMix64) for the generated scenes.
-struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 
 impl Rng {
-    fn next(&mut self) -> f32 {
+    pub(crate) fn next(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
         ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
     }
-    fn vec(&mut self) -> Vec3 {
+    pub(crate) fn vec(&mut self) -> Vec3 {
         Vec3::new(self.next(), self.next(), self.next()) * 2.0 - Vec3::ONE
     }
 }

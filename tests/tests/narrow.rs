@@ -6,7 +6,10 @@
 //! zero-area cases common instead of rare.
 
 use bvhkit::glam::{DVec3, Vec3};
-use bvhkit::narrow::{triangles_intersect, triangles_intersect_by_edges};
+use bvhkit::narrow::{
+    triangles_intersect, triangles_intersect_by_edges, triangles_intersect_with, ExactSigns,
+    F32Signs, F64Signs, Orientation,
+};
 use bvhkit::{Intersects, Triangle};
 use bvhkit_tests::proptest_config;
 use proptest::prelude::*;
@@ -90,6 +93,23 @@ proptest! {
     fn agrees_with_f64_separating_axes(t1 in grid_triangle(4), t2 in grid_triangle(4)) {
         prop_assume!(non_degenerate(&t1) && non_degenerate(&t2));
         prop_assert_eq!(t1.intersects(&t2), sat_f64(&t1, &t2), "{:?} {:?}", t1, t2);
+    }
+
+    /// On small integer grids every determinant is exact in `f32` too, so
+    /// the floating-point signs must agree with the exact ones there, and
+    /// the test must give one answer whatever signs it reads.
+    #[test]
+    fn float_signs_are_exact_on_small_grids((t1, t2) in related_pair(), a in grid_point(4), b in grid_point(4), c in grid_point(4), d in grid_point(4)) {
+        for k in 0..3 {
+            prop_assert_eq!(F32Signs.orient2(a, b, c, k), ExactSigns.orient2(a, b, c, k));
+            prop_assert_eq!(F64Signs.orient2(a, b, c, k), ExactSigns.orient2(a, b, c, k));
+        }
+        prop_assert_eq!(F32Signs.orient3(a, b, c, d), ExactSigns.orient3(a, b, c, d));
+        prop_assert_eq!(F64Signs.orient3(a, b, c, d), ExactSigns.orient3(a, b, c, d));
+        let exact = triangles_intersect(&t1, &t2);
+        prop_assert_eq!(triangles_intersect_with(&t1, &t2, ExactSigns), exact);
+        prop_assert_eq!(triangles_intersect_with(&t1, &t2, F64Signs), exact);
+        prop_assert_eq!(triangles_intersect_with(&t1, &t2, F32Signs), exact);
     }
 
     #[test]
