@@ -32,9 +32,11 @@ pub struct FitRow {
     pub volume_ratio: f64,
 }
 
-/// One builder on the scene.
+/// One builder on one scene.
 #[derive(Clone, Debug, Serialize)]
 pub struct BuilderRow {
+    /// The scene: `rocks` (generated) or a mesh file's name.
+    pub scene: String,
     /// Builder name.
     pub builder: String,
     /// Median build time of one tree.
@@ -43,8 +45,8 @@ pub struct BuilderRow {
     pub sah_cost: f64,
     /// Median time of the pair query of the scene.
     pub query_ms: f64,
-    /// Whether no other builder is at least as good on all three (and
-    /// better on one).
+    /// Whether no other builder on the same scene is at least as good on
+    /// all three (and better on one).
     pub pareto: bool,
     /// Whether the pair query matched brute force.
     pub verified: bool,
@@ -100,8 +102,23 @@ fn vertices(tris: &[Triangle]) -> Vec<Vec3> {
     tris.iter().flat_map(|t| t.v).collect()
 }
 
-/// Marks the rows no other row dominates on (build time, SAH, query time).
+/// Marks the rows no other row of the same scene dominates on (build time,
+/// SAH, query time).
 fn mark_pareto(rows: &mut [BuilderRow]) {
+    let scenes: Vec<String> = rows.iter().map(|r| r.scene.clone()).collect();
+    let mut start = 0;
+    while start < rows.len() {
+        let end = start
+            + scenes[start..]
+                .iter()
+                .take_while(|s| **s == scenes[start])
+                .count();
+        mark_pareto_within(&mut rows[start..end]);
+        start = end;
+    }
+}
+
+fn mark_pareto_within(rows: &mut [BuilderRow]) {
     let keys: Vec<[f64; 3]> = rows
         .iter()
         .map(|r| [r.build_ms, r.sah_cost, r.query_ms])
@@ -115,25 +132,71 @@ fn mark_pareto(rows: &mut [BuilderRow]) {
     }
 }
 
-/// Measures everything; `progress` is told what is being measured.
+/// Measures everything on the generated scenes; `progress` is told what is
+/// being measured.
 pub fn run(
     subdivisions: u32,
     runs: usize,
+    progress: impl FnMut(&str),
+) -> Result<Report, bvhkit::Error> {
+    run_with_meshes(subdivisions, runs, &[], progress)
+}
+
+/// [`run`], plus real meshes `(name, triangles)`: each gets volume fits and
+/// a builder table for itself against a copy shifted by a twentieth of its
+/// size along x (every tree verified against brute force).
+pub fn run_with_meshes(
+    subdivisions: u32,
+    runs: usize,
+    meshes: &[(String, Vec<Triangle>)],
     mut progress: impl FnMut(&str),
 ) -> Result<Report, bvhkit::Error> {
     let (a, b) = scene::rock_pair(subdivisions);
     let n = a.len();
     let mut fits = Vec::new();
-    for (name, mesh) in [
-        ("rock", a.clone()),
-        ("soup", scene::soup(n, 7)),
-        ("clustered", scene::clustered(n, 7)),
-        ("slivers", scene::slivers(n, 7)),
-    ] {
+    let generated = [
+        ("rock".to_string(), a.clone()),
+        ("soup".to_string(), scene::soup(n, 7)),
+        ("clustered".to_string(), scene::clustered(n, 7)),
+        ("slivers".to_string(), scene::slivers(n, 7)),
+    ];
+    for (name, mesh) in generated.iter().chain(meshes) {
         progress(&format!("fitting volumes: {name}"));
-        fits.extend(fit_all(name, &vertices(&mesh), runs));
+        fits.extend(fit_all(name, &vertices(mesh), runs));
     }
-    let reference = tour::reference_pairs(&a, &b);
+    let mut builders = builder_rows("rocks", &a, &b, runs, &mut progress)?;
+    for (name, mesh) in meshes {
+        let mut bounds = Aabb::EMPTY;
+        for t in mesh {
+            bounds = bounds.union(&bvhkit::Primitive::bounds(t));
+        }
+        let shift = Vec3::X * (bounds.max - bounds.min).length() / 20.0;
+        let moved: Vec<Triangle> = mesh.iter().map(|t| t.translated(shift)).collect();
+        builders.extend(builder_rows(name, mesh, &moved, runs, &mut progress)?);
+    }
+    mark_pareto(&mut builders);
+    progress("tree representations");
+    let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
+    progress("narrow phase: exact, f64 and f32 signs");
+    let narrow = near_misses::measure(20_000, runs);
+    Ok(Report {
+        scene: format!("two rocks of {n} triangles ({subdivisions} subdivisions)"),
+        fits,
+        builders,
+        layouts,
+        narrow,
+    })
+}
+
+/// Every builder on the scene `a` against `b`.
+fn builder_rows(
+    scene: &str,
+    a: &[Triangle],
+    b: &[Triangle],
+    runs: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<Vec<BuilderRow>, bvhkit::Error> {
+    let reference = tour::reference_pairs(a, b);
     let mut candidates: Vec<(String, Builder)> = PRESETS
         .iter()
         .map(|p| (p.name.to_string(), Builder::TopDown(p.builder)))
@@ -157,9 +220,10 @@ pub fn run(
     ));
     let mut builders = Vec::new();
     for (name, builder) in candidates {
-        progress(&format!("builder {name}"));
-        let row = tour::measure_with::<Aabb>(&name, builder, &a, &b, &reference, runs)?;
+        progress(&format!("{scene}: builder {name}"));
+        let row = tour::measure_with::<Aabb>(&name, builder, a, b, &reference, runs)?;
         builders.push(BuilderRow {
+            scene: scene.to_string(),
             builder: name,
             build_ms: row.build_ms,
             sah_cost: row.sah_cost,
@@ -168,18 +232,7 @@ pub fn run(
             verified: row.matches,
         });
     }
-    mark_pareto(&mut builders);
-    progress("tree representations");
-    let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
-    progress("narrow phase: exact, f64 and f32 signs");
-    let narrow = near_misses::measure(20_000, runs);
-    Ok(Report {
-        scene: format!("two rocks of {n} triangles ({subdivisions} subdivisions)"),
-        fits,
-        builders,
-        layouts,
-        narrow,
-    })
+    Ok(builders)
 }
 
 type Plot = Result<(), Box<dyn std::error::Error>>;
@@ -242,6 +295,7 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
     let pts: Vec<_> = r
         .builders
         .iter()
+        .filter(|b| b.scene == "rocks")
         .map(|b| (b.build_ms, b.sah_cost, b.builder.clone(), b.pareto))
         .collect();
     scatter(
@@ -313,7 +367,7 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
             f.mesh, f.method, f.ms, f.volume_ratio
         );
     }
-    md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\n| builder | build ms | SAH | query ms | verified |\n|---|---:|---:|---:|---|\n";
+    md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\nThe plot shows the generated rocks; real meshes given with `--mesh` have their own rows (each against a copy of itself shifted by a twentieth of its size), with the Pareto front marked per scene.\n\n| scene | builder | build ms | SAH | query ms | verified |\n|---|---|---:|---:|---:|---|\n";
     for b in &r.builders {
         let name = if b.pareto {
             format!("**{}**", b.builder)
@@ -321,7 +375,8 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
             b.builder.clone()
         };
         md += &format!(
-            "| {name} | {:.2} | {:.2} | {:.3} | {} |\n",
+            "| {} | {name} | {:.2} | {:.2} | {:.3} | {} |\n",
+            b.scene,
             b.build_ms,
             b.sah_cost,
             b.query_ms,
@@ -357,6 +412,7 @@ mod tests {
     #[test]
     fn pareto_marks_only_undominated_rows() {
         let row = |name: &str, b, s, q| BuilderRow {
+            scene: "s".into(),
             builder: name.into(),
             build_ms: b,
             sah_cost: s,
@@ -373,6 +429,26 @@ mod tests {
         mark_pareto(&mut rows);
         let marked: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
         assert_eq!(marked, [true, true, false, true]);
+        // Another scene's rows are compared among themselves only.
+        let mut other = row("slow elsewhere", 100.0, 90.0, 9.0);
+        other.scene = "mesh".into();
+        rows.push(other);
+        mark_pareto(&mut rows);
+        assert!(rows[4].pareto && !rows[2].pareto);
+    }
+
+    #[test]
+    fn meshes_get_fits_and_verified_builder_rows_of_their_own() {
+        let mesh = ("tiny.obj".to_string(), scene::rock(1, 3));
+        let r = run_with_meshes(1, 1, std::slice::from_ref(&mesh), |_| {}).unwrap();
+        assert!(r.fits.iter().any(|f| f.mesh == "tiny.obj"));
+        let rows: Vec<_> = r
+            .builders
+            .iter()
+            .filter(|b| b.scene == "tiny.obj")
+            .collect();
+        assert!(rows.len() >= PRESETS.len() && rows.iter().all(|b| b.verified));
+        assert!(rows.iter().any(|b| b.pareto));
     }
 
     #[test]

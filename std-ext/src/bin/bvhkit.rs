@@ -127,6 +127,11 @@ enum Command {
         /// Also print the report as JSON.
         #[arg(long)]
         json: bool,
+        /// A real mesh to add (OBJ, STL, PLY or OFF; repeat for several):
+        /// its volume fits and a builder table against a shifted copy of
+        /// itself. `scripts/fetch-meshes` fetches some into data/meshes.
+        #[arg(long)]
+        mesh: Vec<PathBuf>,
     },
     /// Measure every tree representation (canonical, implicit array,
     /// preorder with 32- and 16-bit links, tri-node, 4-wide, quantized 4-wide)
@@ -238,11 +243,30 @@ fn main() -> ExitCode {
             subdivisions,
             runs,
             json,
+            mesh,
         } => {
-            let bar = spinner("measuring");
-            let report = bvhkit_std::report::run(subdivisions, runs as usize, |what| {
-                bar.set_message(what.to_string())
-            });
+            let bar = spinner("loading meshes");
+            let mut meshes = Vec::new();
+            for p in &mesh {
+                match bvhkit_std::mesh::load(p) {
+                    Ok(t) => {
+                        let name = p.file_name().map_or_else(
+                            || p.display().to_string(),
+                            |f| f.to_string_lossy().into_owned(),
+                        );
+                        meshes.push((name, t));
+                    }
+                    Err(e) => {
+                        drop(bar);
+                        eprintln!("error: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                }
+            }
+            let report =
+                bvhkit_std::report::run_with_meshes(subdivisions, runs as usize, &meshes, |what| {
+                    bar.set_message(what.to_string())
+                });
             bar.finish_and_clear();
             let report = match report {
                 Ok(r) => r,
