@@ -31,7 +31,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 14] = [
+pub const EXERCISES: [(u32, &str); 15] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -46,6 +46,10 @@ pub const EXERCISES: [(u32, &str); 14] = [
     (12, "preorder layout: convert a tree"),
     (13, "quantize a box conservatively"),
     (14, "sizing static buffers"),
+    (
+        15,
+        "the advisor's yardstick: workload time and the Pareto front",
+    ),
 ];
 
 /// A score for one exercise.
@@ -777,6 +781,52 @@ pub fn checks() -> Vec<Check> {
                 formula && Reference.stack_dfs(&ta, &pa, &tb, &pb, &mut stack, &mut out)
             },
         },
+        // Exercise 15
+        Check {
+            exercise: 15,
+            name: "workload time: built once, rebuilt every frame, and 0 or 1 frames",
+            points: 4,
+            run: |e| {
+                let close = |x: f64, want: f64| (x - want).abs() <= 1e-9 * want.abs().max(1.0);
+                close(e.workload_ms(10.0, 2.0, false, 60), 130.0)
+                    && close(e.workload_ms(10.0, 2.0, true, 60), 720.0)
+                    && close(e.workload_ms(10.0, 2.0, false, 0), 10.0)
+                    && close(e.workload_ms(10.0, 2.0, true, 0), 0.0)
+                    && close(e.workload_ms(3.5, 0.25, false, 1), 3.75)
+                    && close(e.workload_ms(3.5, 0.25, true, 1), 3.75)
+            },
+        },
+        Check {
+            exercise: 15,
+            name: "Pareto front: a staircase with dominated points",
+            points: 3,
+            run: |e| {
+                e.pareto_front(&[(1.0, 5.0), (2.0, 2.0), (3.0, 3.0), (4.0, 1.0), (5.0, 5.0)])
+                    == [0, 1, 3]
+                    && e.pareto_front(&[]).is_empty()
+                    && e.pareto_front(&[(7.0, 7.0)]) == [0]
+            },
+        },
+        Check {
+            exercise: 15,
+            name: "Pareto front: ties, duplicates, and random points on a small grid",
+            points: 3,
+            run: |e| {
+                let ties =
+                    e.pareto_front(&[(2.0, 2.0), (2.0, 2.0), (2.0, 3.0), (3.0, 2.0)]) == [0, 1];
+                let mut s = 0x9e37_79b9_7f4a_7c15u64;
+                let random = (0..40).all(|_| {
+                    let points: Vec<(f64, f64)> = (0..12)
+                        .map(|_| {
+                            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                            (((s >> 33) % 5) as f64, ((s >> 45) % 5) as f64)
+                        })
+                        .collect();
+                    e.pareto_front(&points) == Reference.pareto_front(&points)
+                });
+                ties && random
+            },
+        },
     ]
 }
 
@@ -1127,7 +1177,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 160/160 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 170/170 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -1416,6 +1466,40 @@ mod tests {
                 _ => Reference.pair_stack_bound(depth_a, depth_b),
             }
         }
+
+        fn workload_ms(&self, build: f64, query: f64, rebuild: bool, frames: usize) -> f64 {
+            let n = frames as f64;
+            match self.0 {
+                // Ignores the motion: always builds once.
+                32 => build + n * query,
+                // Rebuilds every frame and once more before the first.
+                33 if rebuild => (n + 1.0) * build + n * query,
+                _ => Reference.workload_ms(build, query, rebuild, frames),
+            }
+        }
+
+        fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize> {
+            let dominated = |i: usize, strict: bool| {
+                let (t, x) = points[i];
+                points.iter().enumerate().any(|(j, &(u, y))| {
+                    j != i
+                        && if strict {
+                            u < t && y < x
+                        } else {
+                            u <= t && y <= x && (u < t || y < x)
+                        }
+                })
+            };
+            match self.0 {
+                // Dominance only when better on both: keeps points that tie on one.
+                34 => (0..points.len()).filter(|&i| !dominated(i, true)).collect(),
+                // Keeps only the first of equal points.
+                35 => (0..points.len())
+                    .filter(|&i| !dominated(i, false) && !points[..i].contains(&points[i]))
+                    .collect(),
+                _ => Reference.pareto_front(points),
+            }
+        }
     }
 
     #[test]
@@ -1452,6 +1536,10 @@ mod tests {
             (29, 14),
             (30, 14),
             (31, 14),
+            (32, 15),
+            (33, 15),
+            (34, 15),
+            (35, 15),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(

@@ -126,6 +126,23 @@ pub trait Exercises {
     /// deep (a step opens one side, leaving one pair waiting, or both sides,
     /// leaving three), counting the pair being expanded.
     fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize;
+
+    /// Exercise 15a: the total time of a workload run for `frames` frames
+    /// with a tree that takes `build_ms` to build and `query_ms` per query:
+    /// built once when `rebuild_every_frame` is false, built every frame
+    /// when it is true; one query per frame either way.
+    fn workload_ms(
+        &self,
+        build_ms: f64,
+        query_ms: f64,
+        rebuild_every_frame: bool,
+        frames: usize,
+    ) -> f64;
+    /// Exercise 15b: the Pareto front of `(time, error)` points, both to be
+    /// minimised: the indices, ascending, of the points no other point
+    /// dominates (another point dominates when it is no worse on both and
+    /// strictly better on one). Equal points do not dominate each other.
+    fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize>;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

@@ -196,6 +196,31 @@ impl Exercises for Reference {
         bvhkit::query::pair_stack_bound((2, depth_a), (2, depth_b))
     }
 
+    fn workload_ms(
+        &self,
+        build_ms: f64,
+        query_ms: f64,
+        rebuild_every_frame: bool,
+        frames: usize,
+    ) -> f64 {
+        use bvhkit_std::advisor::{workload_ms, Motion};
+        let motion = if rebuild_every_frame {
+            Motion::Deforming
+        } else {
+            Motion::Static
+        };
+        workload_ms(build_ms, query_ms, motion, frames)
+    }
+
+    fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize> {
+        let keys: Vec<[f64; 2]> = points.iter().map(|&(t, e)| [t, e]).collect();
+        bvhkit_std::report::pareto(&keys)
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &on)| on.then_some(i))
+            .collect()
+    }
+
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
         let (mut lo, mut hi) = ([0u8; 3], [255u8; 3]);
         for k in 0..3 {

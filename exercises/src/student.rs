@@ -168,4 +168,23 @@ impl Exercises for Student {
         let _ = (depth_a, depth_b);
         todo!("exercise 14b")
     }
+
+    fn workload_ms(
+        &self,
+        build_ms: f64,
+        query_ms: f64,
+        rebuild_every_frame: bool,
+        frames: usize,
+    ) -> f64 {
+        // Hint: how many builds and how many queries does each case run?
+        let _ = (build_ms, query_ms, rebuild_every_frame, frames);
+        todo!("exercise 15a")
+    }
+
+    fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize> {
+        // Hint: compare every point with every other (n² is fine here);
+        // "no worse on both" is <=, "strictly better on one" is <.
+        let _ = points;
+        todo!("exercise 15b")
+    }
 }

@@ -5,6 +5,7 @@
 //! command-line tool. The core crate never allocates; this crate is where
 //! `Vec`s, files and clocks live.
 
+pub mod advisor;
 pub mod collide;
 pub mod cost;
 pub mod layouts;

@@ -6,6 +6,7 @@
 //! Pareto front marked) and tree representations (bytes against extra volume
 //! tests).
 
+use crate::advisor::{self, AdvisorRow, Case};
 use crate::layouts::{self, LayoutRow};
 use crate::near_misses::{self, NarrowRow};
 use crate::tour::{self, Builder};
@@ -65,6 +66,9 @@ pub struct Report {
     pub layouts: Vec<LayoutRow>,
     /// Narrow phase: the triangle test with exact, `f64` and `f32` signs.
     pub narrow: Vec<NarrowRow>,
+    /// The advisor against the fastest measured combination, per scene and
+    /// workload.
+    pub advisor: Vec<AdvisorRow>,
 }
 
 fn fit_all(mesh: &str, points: &[Vec3], runs: usize) -> Vec<FitRow> {
@@ -123,13 +127,30 @@ fn mark_pareto_within(rows: &mut [BuilderRow]) {
         .iter()
         .map(|r| [r.build_ms, r.sah_cost, r.query_ms])
         .collect();
-    for (i, r) in rows.iter_mut().enumerate() {
-        r.pareto = !keys.iter().enumerate().any(|(j, k)| {
-            j != i
-                && k.iter().zip(&keys[i]).all(|(a, b)| a <= b)
-                && k.iter().zip(&keys[i]).any(|(a, b)| a < b)
-        });
+    for (r, on) in rows.iter_mut().zip(pareto(&keys)) {
+        r.pareto = on;
     }
+}
+
+/// For each point (every coordinate to be minimised), whether it is on the
+/// Pareto front: no other point is at least as good on every coordinate and
+/// better on one. Equal points do not dominate each other.
+///
+/// ```
+/// let on = bvhkit_std::report::pareto(&[[1.0, 5.0], [2.0, 2.0], [3.0, 3.0], [2.0, 2.0]]);
+/// assert_eq!(on, [true, true, false, true]);
+/// ```
+pub fn pareto<const K: usize>(keys: &[[f64; K]]) -> Vec<bool> {
+    keys.iter()
+        .enumerate()
+        .map(|(i, mine)| {
+            !keys.iter().enumerate().any(|(j, k)| {
+                j != i
+                    && k.iter().zip(mine).all(|(a, b)| a <= b)
+                    && k.iter().zip(mine).any(|(a, b)| a < b)
+            })
+        })
+        .collect()
 }
 
 /// Measures everything on the generated scenes; `progress` is told what is
@@ -179,12 +200,20 @@ pub fn run_with_meshes(
     let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
     progress("narrow phase: exact, f64 and f32 signs");
     let narrow = near_misses::measure(20_000, runs);
+    let mut cases = Case::generated(subdivisions)?;
+    for (name, mesh) in meshes {
+        cases.push(Case::from_mesh(name, mesh)?);
+    }
+    let advisor = advisor::evaluate(&cases, 2_000, runs, |what| {
+        progress(&format!("advisor grid: {what}"))
+    })?;
     Ok(Report {
         scene: format!("two rocks of {n} triangles ({subdivisions} subdivisions)"),
         fits,
         builders,
         layouts,
         narrow,
+        advisor,
     })
 }
 
@@ -390,6 +419,8 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
         near_misses::KINDS.join(", ")
     );
     md += &near_misses::render(&r.narrow);
+    md += "\n## The advisor against the best\n\nFor each scene and workload (60 frames; pairs are exact triangle pairs, rays a batch of 2 000 closest hits), every combination of builder, volume, representation and walk was measured and checked against brute force. The advised combination's total time is compared with the fastest; the default (SAH, boxes, canonical nodes, default walk) is shown for scale.\n\n";
+    md += &advisor::render(&r.advisor);
     let md_path = dir.join("report.md");
     std::fs::write(&md_path, md).map_err(|e| format!("{}: {e}", md_path.display()))?;
     let json_path = dir.join("report.json");
@@ -475,6 +506,11 @@ mod tests {
         let md = std::fs::read_to_string(&files[0]).unwrap();
         assert!(md.contains("## Builders") && md.contains("**"));
         assert!(md.contains("## Narrow phase") && files.iter().any(|f| f.ends_with("narrow.svg")));
+        assert!(md.contains("## The advisor against the best"));
+        // Every scene (4 generated) gets every workload, all verified, and the
+        // advised combination is one of those measured.
+        assert_eq!(r.advisor.len(), 4 * advisor::Workload::ALL.len());
+        assert!(r.advisor.iter().all(|a| a.all_verified && a.ratio >= 1.0));
         let exact_wrong = r
             .narrow
             .iter()

@@ -112,8 +112,9 @@ enum Command {
     /// Run time against error: fit every volume type (time against
     /// looseness), build with every builder (time against SAH cost and query
     /// time, Pareto front marked) and lay the tree out in every
-    /// representation (memory against extra volume tests). Writes report.md,
-    /// report.json and SVG plots.
+    /// representation (memory against extra volume tests), and measure every
+    /// combination per scene and workload to see how far the advisor's pick
+    /// is from the fastest. Writes report.md, report.json and SVG plots.
     Bench {
         /// Output folder.
         #[arg(long, default_value = "target/bvhkit-report")]
@@ -133,6 +134,44 @@ enum Command {
         #[arg(long)]
         mesh: Vec<PathBuf>,
     },
+    /// Advise a builder, bounding volume, tree representation and traversal
+    /// for a scene and workload, and say why. The advice comes from cheap
+    /// scene statistics (primitive count, how evenly the primitives fill
+    /// space, size spread, sliver ratio, the objects' relative size); with
+    /// --measure, every combination is also measured on the scene (answers
+    /// checked against brute force) and the advice is compared with the
+    /// fastest.
+    Advise {
+        /// Mesh file (.obj, .stl, .ply or .off); object B is a turned and
+        /// shifted copy. Default: the built-in rock pair.
+        mesh: Option<PathBuf>,
+        /// What the scene is queried for.
+        #[arg(long, value_enum, default_value_t = QueryArg::Pairs)]
+        query: QueryArg,
+        /// How the scene moves: static (build once), rigid (B moves as a
+        /// rigid body; build once, query through its pose), deforming
+        /// (rebuild every frame).
+        #[arg(long, value_enum, default_value_t = MotionArg::Static)]
+        motion: MotionArg,
+        /// Frames: queries per build (static, rigid) or rebuilds (deforming).
+        #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+        frames: u64,
+        /// Icosphere subdivisions of the built-in rocks (5 = 20 480 triangles).
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=7))]
+        subdivisions: u32,
+        /// Also measure every combination on this scene and compare.
+        #[arg(long)]
+        measure: bool,
+        /// Rays per frame (rays workloads, with --measure).
+        #[arg(long, default_value_t = 2_000)]
+        rays: usize,
+        /// Timed runs per measurement; the median is kept.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=50))]
+        runs: u64,
+        /// Print the advice (and measurements) as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure every tree representation (canonical, implicit array,
     /// preorder with 32- and 16-bit links, tri-node, 4-wide, quantized 4-wide)
     /// on the built-in rock pair: bytes per triangle, conversion time, pair and
@@ -151,6 +190,19 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum QueryArg {
+    Pairs,
+    Rays,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum MotionArg {
+    Static,
+    Rigid,
+    Deforming,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -194,6 +246,67 @@ fn print_json<T: serde::Serialize>(value: &T) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Advise {
+            mesh,
+            query,
+            motion,
+            frames,
+            subdivisions,
+            measure,
+            rays,
+            runs,
+            json,
+        } => {
+            use bvhkit_std::advisor::{self, Case, Motion, QueryKind, Workload};
+            let workload = Workload {
+                query: match query {
+                    QueryArg::Pairs => QueryKind::Pairs,
+                    QueryArg::Rays => QueryKind::Rays,
+                },
+                motion: match motion {
+                    MotionArg::Static => Motion::Static,
+                    MotionArg::Rigid => Motion::Rigid,
+                    MotionArg::Deforming => Motion::Deforming,
+                },
+                frames: frames as usize,
+            };
+            let bar = spinner("loading");
+            let case = match &mesh {
+                Some(p) => bvhkit_std::mesh::load(p)
+                    .map_err(|e| e.to_string())
+                    .and_then(|t| {
+                        Case::from_mesh(&p.display().to_string(), &t).map_err(|e| e.to_string())
+                    }),
+                None => Case::generated(subdivisions)
+                    .map_err(|e| e.to_string())
+                    .map(|mut cases| cases.swap_remove(0)),
+            };
+            let case = match case {
+                Ok(c) => c,
+                Err(e) => return fail(e),
+            };
+            let report =
+                advisor::advise_case(&case, &workload, measure, rays, runs as usize, |what| {
+                    bar.set_message(format!("measuring {what}"))
+                });
+            bar.finish_and_clear();
+            let report = match report {
+                Ok(r) => r,
+                Err(e) => return fail(e),
+            };
+            if json {
+                if !print_json(&report) {
+                    return ExitCode::FAILURE;
+                }
+            } else {
+                print!("{}", advisor::render_case(&report));
+            }
+            if report.measured.iter().all(|r| r.all_verified) {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            }
+        }
         Command::Stats {
             mesh,
             builder,
@@ -291,6 +404,7 @@ fn main() -> ExitCode {
             }
             if report.builders.iter().all(|b| b.verified)
                 && report.layouts.iter().all(|l| l.same_answers)
+                && report.advisor.iter().all(|a| a.all_verified)
             {
                 ExitCode::SUCCESS
             } else {
@@ -450,6 +564,12 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// Prints the error and returns failure.
+fn fail(e: impl std::fmt::Display) -> ExitCode {
+    eprintln!("error: {e}");
+    ExitCode::FAILURE
 }
 
 /// A spinner on stderr for anything that may take more than a second; it
