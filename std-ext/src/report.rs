@@ -132,6 +132,80 @@ fn mark_pareto_within(rows: &mut [BuilderRow]) {
     }
 }
 
+/// The fastest method at each error level: the Pareto front of each
+/// section over (time, error), sorted by time, so each row is the fastest
+/// way to get at most that error.
+pub fn headlines(r: &Report) -> String {
+    fn front<T>(rows: &[T], key: impl Fn(&T) -> [f64; 2]) -> Vec<&T> {
+        let keys: Vec<[f64; 2]> = rows.iter().map(&key).collect();
+        let mut on: Vec<&T> = rows
+            .iter()
+            .zip(pareto(&keys))
+            .filter_map(|(row, on)| on.then_some(row))
+            .collect();
+        on.sort_by(|a, b| key(a)[0].total_cmp(&key(b)[0]));
+        on
+    }
+    fn groups<T, K: PartialEq + Clone>(rows: &[T], by: impl Fn(&T) -> K) -> Vec<(K, Vec<&T>)> {
+        let mut out: Vec<(K, Vec<&T>)> = Vec::new();
+        for row in rows {
+            let k = by(row);
+            match out.iter_mut().find(|(g, _)| *g == k) {
+                Some((_, v)) => v.push(row),
+                None => out.push((k, vec![row])),
+            }
+        }
+        out
+    }
+    let mut md = String::from(
+        "## Headlines: the fastest method at each error level\n\nEach table is a Pareto front over (time, error), sorted by time: every row is the fastest way measured to get at most that error.\n\n",
+    );
+    md += "Volume fits (error: volume over the tightest found):\n\n| mesh | method | ms | volume / tightest |\n|---|---|---:|---:|\n";
+    for (mesh, rows) in groups(&r.fits, |f| f.mesh.clone()) {
+        for f in front(&rows, |f| [f.ms, f.volume_ratio]) {
+            md += &format!(
+                "| {mesh} | {} | {:.3} | {:.3} |\n",
+                f.method, f.ms, f.volume_ratio
+            );
+        }
+    }
+    md += "\nBuilders (error: SAH cost of the tree):\n\n| scene | builder | build ms | SAH | query ms |\n|---|---|---:|---:|---:|\n";
+    for (scene, rows) in groups(&r.builders, |b| b.scene.clone()) {
+        for b in front(&rows, |b| [b.build_ms, b.sah_cost]) {
+            md += &format!(
+                "| {scene} | {} | {:.2} | {:.2} | {:.3} |\n",
+                b.builder, b.build_ms, b.sah_cost, b.query_ms
+            );
+        }
+    }
+    md += "\nRepresentations (cost: bytes per triangle; error: volume tests of the pair query):\n\n| layout | B/tri | pair Nv | pairs ms |\n|---|---:|---:|---:|\n";
+    let kept: Vec<&LayoutRow> = r.layouts.iter().filter(|l| l.refused.is_none()).collect();
+    for l in front(&kept, |l| [l.bytes_per_triangle, l.pair_bv_tests as f64]) {
+        md += &format!(
+            "| {} | {:.1} | {} | {:.3} |\n",
+            l.layout, l.bytes_per_triangle, l.pair_bv_tests, l.pairs_ms
+        );
+    }
+    md += "\nNarrow phase (error: share of answers differing from exact):\n\n| pairs | signs | ns per test | disagreement |\n|---|---|---:|---:|\n";
+    for (pairs, rows) in groups(&r.narrow, |n| n.pairs) {
+        for n in front(&rows, |n| [n.ns_per_test, n.disagreement]) {
+            md += &format!(
+                "| {pairs} | {} | {:.0} | {:.4} % |\n",
+                n.signs,
+                n.ns_per_test,
+                100.0 * n.disagreement
+            );
+        }
+    }
+    let (mean, worst) = advisor::summary(r.advisor.iter().map(|a| a.ratio));
+    let (dmean, dworst) = advisor::summary(r.advisor.iter().map(|a| a.default_ratio));
+    md += &format!(
+        "\nAdvisor: its pick's total time over the fastest combination measured, over {} scene × workload cases: geometric mean {mean:.2}, worst {worst:.2} (the default combination: {dmean:.2}, {dworst:.2}).\n\n",
+        r.advisor.len()
+    );
+    md
+}
+
 /// For each point (every coordinate to be minimised), whether it is on the
 /// Pareto front: no other point is at least as good on every coordinate and
 /// better on one. Equal points do not dominate each other.
@@ -389,6 +463,7 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
         "# bvhkit bench: run time against error\n\nScene: {}.\n\n",
         r.scene
     );
+    md += &headlines(r);
     md += "## Fitting a volume\n\nOne volume around all vertices of each mesh; looseness is the volume over the smallest volume any method found on that mesh. A k-DOP is charged the volume of its enclosing box, an upper bound on its true volume.\n\n![fits](fits.svg)\n\n| mesh | method | ms | volume / tightest |\n|---|---|---:|---:|\n";
     for f in &r.fits {
         md += &format!(
@@ -507,6 +582,15 @@ mod tests {
         assert!(md.contains("## Builders") && md.contains("**"));
         assert!(md.contains("## Narrow phase") && files.iter().any(|f| f.ends_with("narrow.svg")));
         assert!(md.contains("## The advisor against the best"));
+        assert!(md.contains("## Headlines"));
+        // The fastest fit is on the front, and so is the tightest.
+        let fastest_aabb = r
+            .fits
+            .iter()
+            .filter(|f| f.mesh == "rock")
+            .min_by(|a, b| a.ms.total_cmp(&b.ms))
+            .unwrap();
+        assert!(headlines(&r).contains(&format!("| rock | {} |", fastest_aabb.method)));
         // Every scene (4 generated) gets every workload, all verified, and the
         // advised combination is one of those measured.
         assert_eq!(r.advisor.len(), 4 * advisor::Workload::ALL.len());
