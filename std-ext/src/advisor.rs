@@ -767,6 +767,18 @@ where
     F: Frame + Place<Triangle> + Copy,
 {
     let a = &r.case.a[..];
+    let measured = |walk, moved, build_ms, query_ms, verified| Measurement {
+        choice: Choice {
+            builder,
+            volume,
+            layout,
+            walk,
+        },
+        moved,
+        build_ms,
+        query_ms,
+        verified,
+    };
     for walk in Walk::pair_walks() {
         let Walk::Pairs(traversal) = walk else {
             continue;
@@ -783,18 +795,13 @@ where
         let first = ms(t.elapsed());
         found.sort_unstable();
         let t = r.time(usize::from(F::MOVES), first, || query().count());
-        out.push(Measurement {
-            choice: Choice {
-                builder,
-                volume,
-                layout,
-                walk,
-            },
-            moved: F::MOVES,
-            build_ms: build_a + build_b,
-            query_ms: t,
-            verified: found == r.pairs,
-        });
+        out.push(measured(
+            walk,
+            F::MOVES,
+            build_a + build_b,
+            t,
+            found == r.pairs,
+        ));
     }
     if !with_rays {
         return Ok(());
@@ -813,18 +820,7 @@ where
         let hits = cast()?;
         let first = ms(t.elapsed());
         let t = r.time(2, first, cast);
-        out.push(Measurement {
-            choice: Choice {
-                builder,
-                volume,
-                layout,
-                walk,
-            },
-            moved: false,
-            build_ms: build_a,
-            query_ms: t,
-            verified: hits == r.hits,
-        });
+        out.push(measured(walk, false, build_a, t, hits == r.hits));
     }
     Ok(())
 }
@@ -979,6 +975,17 @@ fn measure_volume<B: BoundingVolume>(
 /// representation, and with the other volumes in the canonical one; for
 /// pairs in A's frame, pairs with B moved, and a batch of `rays` rays;
 /// `runs` timed runs each (the median is kept).
+///
+/// ```
+/// use bvhkit_std::advisor::{judge, measure_grid, Case, Workload};
+/// let case = Case::generated(1)?.swap_remove(0); // two rocks of 80 triangles
+/// let grid = measure_grid(&case, 10, 1, |_| {})?;
+/// assert!(grid.iter().all(|m| m.verified));
+/// let rows = judge(&case, &grid, &Workload::ALL);
+/// assert_eq!(rows.len(), Workload::ALL.len());
+/// assert!(rows.iter().all(|r| r.ratio >= 1.0 && r.rank <= r.candidates));
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 pub fn measure_grid(
     case: &Case,
     rays: usize,
@@ -1034,7 +1041,9 @@ pub struct AdvisorRow {
     pub all_verified: bool,
 }
 
-/// Compares the advice with the measured grid for each workload.
+/// Compares the advice with the measured grid for each workload (see
+/// [`measure_grid`] for an example). A workload whose advised or default
+/// combination is missing from the grid gets no row.
 pub fn judge(case: &Case, grid: &[Measurement], workloads: &[Workload]) -> Vec<AdvisorRow> {
     let stats = SceneStats::of(&case.a, Some(&case.b_local));
     workloads
