@@ -1,65 +1,34 @@
-//! Two-tree query speed against parry3d's `leaf_pairs`, on the same trees'
-//! inputs (the default scene: two rocks of 81 920 triangles each), plus the
-//! cost of counting and of querying a moved tree.
+//! Two-tree query speed on the default scene (two rocks of 81 920 triangles
+//! each): traversals, descent rules, layouts, the cost of counting and of
+//! querying a moved tree. The comparison with other crates (parry3d's
+//! `leaf_pairs` among them) is `scripts/bench-peers`.
 //!
-//! Run: `cargo bench -p bvhkit-std --features peers --bench query`
+//! Run: `cargo bench -p bvhkit-std --bench query`
 //!
-//! What is compared: the candidate pairs (primitive boxes overlap). parry's
-//! leaves hold one primitive, so its leaf pairs are exactly those pairs; both
-//! sides count them. Before timing, the bench checks that all of them find the
-//! same number.
+//! What is measured: the candidate pairs (primitive boxes overlap). Before
+//! timing, the bench checks that every variant finds the same pairs.
 
 use bvhkit::layout::{PreNode, Preorder, Wide, WideNode};
-use bvhkit::{Aabb, Counts, Descent, PairTraversal, Pairs, Primitive, Rigid, TopDown, Triangle};
+use bvhkit::{Aabb, Counts, Descent, PairTraversal, Pairs, Rigid, TopDown};
 use bvhkit_std::{scene, OwnedBvh};
 use criterion::{criterion_group, criterion_main, Criterion};
-use parry3d::bounding_volume::{Aabb as PAabb, BoundingVolume};
-use parry3d::math::{Pose3, Rot3, Vec3 as PVec3};
-use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhNode};
 use std::hint::black_box;
-
-fn parry_aabbs(tris: &[Triangle]) -> Vec<PAabb> {
-    tris.iter()
-        .map(|t| {
-            let b = t.bounds();
-            PAabb::new(b.min.to_array().into(), b.max.to_array().into())
-        })
-        .collect()
-}
 
 fn bench(c: &mut Criterion) {
     let (a, b) = scene::default_pair();
-    let (pa, pb) = (parry_aabbs(&a), parry_aabbs(&b));
-    let parry_a = Bvh::from_leaves(BvhBuildStrategy::Binned, &pa);
-    let parry_b = Bvh::from_leaves(BvhBuildStrategy::Binned, &pb);
     let leaf1 = OwnedBvh::<Aabb>::build(&TopDown::sah().with_max_leaf_size(1), &a).unwrap();
     let leaf1_b = OwnedBvh::<Aabb>::build(&TopDown::sah().with_max_leaf_size(1), &b).unwrap();
     let leaf4 = OwnedBvh::<Aabb>::build(&TopDown::sah(), &a).unwrap();
     let leaf4_b = OwnedBvh::<Aabb>::build(&TopDown::sah(), &b).unwrap();
     let (t1a, t1b, t4a, t4b) = (leaf1.view(), leaf1_b.view(), leaf4.view(), leaf4_b.view());
 
-    let parry_count = || {
-        parry_a
-            .leaf_pairs(&parry_b, |n1: &BvhNode, n2: &BvhNode| {
-                n1.aabb().intersects(&n2.aabb())
-            })
-            .count()
-    };
     let ours = |ta, tb, rule| Pairs::new(ta, &a, tb, &b).descent(rule).count().unwrap();
     let want = ours(&t4a, &t4b, Descent::Larger);
-    eprintln!("candidate pairs: bvhkit {want}, parry3d {}", parry_count());
-    assert_eq!(
-        parry_count(),
-        want,
-        "both libraries must find the same pairs"
-    );
+    eprintln!("candidate pairs: {want}");
     assert_eq!(ours(&t1a, &t1b, Descent::Simultaneous), want);
 
     let mut g = c.benchmark_group("pairs-81920x81920");
     g.sample_size(30);
-    g.bench_function("parry3d-leaf_pairs", |bch| {
-        bch.iter(|| black_box(parry_count()))
-    });
     for (name, ta, tb) in [("leaf1", &t1a, &t1b), ("leaf4", &t4a, &t4b)] {
         for rule in [Descent::Larger, Descent::Simultaneous] {
             g.bench_function(format!("bvhkit-{name}-stack-{}", rule.name()), |bch| {
@@ -129,23 +98,11 @@ fn bench(c: &mut Criterion) {
     });
     g.finish();
 
-    // B moved by a rigid motion into A's frame: parry transforms each B box in
-    // its check (as its mesh intersection does); bvhkit moves node volumes
-    // conservatively (f64, outward rounding).
+    // B moved by a rigid motion into A's frame: bvhkit moves node volumes
+    // conservatively (f64, outward rounding), no rebuild.
     let rot = bvhkit::glam::Quat::from_rotation_y(0.3);
     let shift = bvhkit::glam::Vec3::new(0.2, 0.0, 0.1);
     let motion = Rigid::new(rot, shift).unwrap();
-    let pose = Pose3::from_parts(
-        PVec3::new(shift.x, shift.y, shift.z),
-        Rot3::from_xyzw(rot.x, rot.y, rot.z, rot.w),
-    );
-    let parry_moved = || {
-        parry_a
-            .leaf_pairs(&parry_b, |n1: &BvhNode, n2: &BvhNode| {
-                n1.aabb().intersects(&n2.aabb().transform_by(&pose))
-            })
-            .count()
-    };
     let ours_moved = |ta, tb, traversal| {
         Pairs::new(ta, &a, tb, &b)
             .traversal(traversal)
@@ -154,15 +111,11 @@ fn bench(c: &mut Criterion) {
             .unwrap()
     };
     eprintln!(
-        "moved candidate pairs: bvhkit {} (conservative moved boxes), parry3d {}",
-        ours_moved(&t1a, &t1b, PairTraversal::default()),
-        parry_moved()
+        "moved candidate pairs: {}",
+        ours_moved(&t1a, &t1b, PairTraversal::default())
     );
     let mut g = c.benchmark_group("pairs-moved-81920x81920");
     g.sample_size(30);
-    g.bench_function("parry3d-leaf_pairs-transform_by", |bch| {
-        bch.iter(|| black_box(parry_moved()))
-    });
     for (name, ta, tb) in [("leaf1", &t1a, &t1b), ("leaf4", &t4a, &t4b)] {
         for traversal in [
             PairTraversal::Stack(Descent::Larger),

@@ -1,0 +1,333 @@
+//! What every crate in the comparison shares: the scene (the same f32
+//! triangles and boxes for all), the timing rule, the SAH formula, the pair
+//! checksum and the triangle test behind every crate's ray callback.
+//!
+//! Each peer module (`ours`, `parry`, `obvhs_peer`, `bvh_peer`) turns a
+//! [`Scene`] into a list of [`Measured`] trees; `main` checks every answer
+//! against one ground truth and prints the tables.
+
+use bvhkit::glam::Vec3;
+use bvhkit::{Aabb, Primitive, Ray, RayTarget, Triangle};
+use std::time::Instant;
+
+/// One benchmark scene: a mesh `a`, a moved copy `b` (already in `a`'s frame,
+/// so every crate sees the same boxes), and the rays.
+#[derive(Debug)]
+pub struct Scene {
+    /// Name shown in the tables (the mesh file's stem, or `armadillo-x20`).
+    pub name: String,
+    /// The mesh.
+    pub a: Vec<Triangle>,
+    /// The mesh moved by a small rotation and translation.
+    pub b: Vec<Triangle>,
+    /// `a[i].bounds()`, computed once: the input every builder gets.
+    pub boxes_a: Vec<Aabb>,
+    /// `b[i].bounds()`.
+    pub boxes_b: Vec<Aabb>,
+    /// Random rays (unit direction, `t_max = INFINITY`) aimed into `a`'s box.
+    pub rays: Vec<Ray>,
+}
+
+/// How many times to repeat each measurement.
+#[derive(Clone, Copy, Debug)]
+pub struct Runs {
+    /// Counted builds (one more, uncounted, warms the allocator first).
+    pub build: usize,
+    /// Counted pair queries.
+    pub pairs: usize,
+    /// Counted passes over all rays.
+    pub rays: usize,
+}
+
+/// Median and minimum of the counted runs, in milliseconds.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Timing {
+    /// Median.
+    pub median_ms: f64,
+    /// Minimum.
+    pub min_ms: f64,
+}
+
+/// Runs `f` once uncounted (warm caches and allocator), then `runs` times
+/// counted; returns the timing and the last result.
+pub fn time<R>(runs: usize, mut f: impl FnMut() -> R) -> (Timing, R) {
+    std::hint::black_box(f());
+    let mut ms = Vec::with_capacity(runs.max(1));
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        let r = std::hint::black_box(f());
+        ms.push(t.elapsed().as_secs_f64() * 1e3);
+        last = Some(r);
+    }
+    ms.sort_by(f64::total_cmp);
+    let timing = Timing {
+        median_ms: ms[ms.len() / 2],
+        min_ms: ms[0],
+    };
+    (timing, last.expect("at least one run"))
+}
+
+/// Surface area of a box, in f64.
+pub fn area(b: &Aabb) -> f64 {
+    let e = (b.max - b.min).as_dvec3().max(bvhkit::glam::DVec3::ZERO);
+    2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+}
+
+/// The SAH cost every crate's tree is scored with (the same formula as
+/// bvhkit's `TreeStats::sah_cost`):
+///
+/// `SAH = (C_t * sum over internal nodes A(n) + C_i * sum over leaves A(l) * |l|) / A(root)`
+///
+/// with `C_t = C_i = 1` and `A` the surface area of the node's box. The root
+/// counts as an internal node (term 1). A tree whose root is not one node (a
+/// wide root, parry's root pair) passes the enclosing box as `root` and
+/// lists that virtual root among `nodes` as internal.
+///
+/// `nodes` yields `(box, primitive count)`, count 0 for an internal node.
+pub fn sah(root: &Aabb, nodes: impl IntoIterator<Item = (Aabb, u32)>) -> f64 {
+    let root_area = area(root).max(f64::MIN_POSITIVE);
+    nodes
+        .into_iter()
+        .map(|(b, count)| area(&b) / root_area * f64::from(count.max(1)))
+        .sum()
+}
+
+/// The answer of a pair query: how many pairs, and an order-independent
+/// checksum of them (a wrapping sum of a 64-bit mix of `(i, j)`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct PairSum {
+    /// Number of pairs reported.
+    pub count: u64,
+    /// Wrapping sum of `mix(i, j)` over the pairs.
+    pub checksum: u64,
+}
+
+impl PairSum {
+    /// Adds the pair (triangle `i` of `a`, triangle `j` of `b`).
+    #[inline(always)]
+    pub fn add(&mut self, i: u32, j: u32) {
+        self.count += 1;
+        self.checksum = self
+            .checksum
+            .wrapping_add(mix((u64::from(i) << 32) | u64::from(j)));
+    }
+}
+
+/// SplitMix64's finaliser: a pair reported twice, or a wrong pair, changes
+/// the sum with overwhelming probability.
+#[inline(always)]
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The box test every crate's pair answer is defined by: closed intervals
+/// (touching boxes overlap), as `bvhkit::Aabb::overlaps`.
+#[inline(always)]
+pub fn boxes_overlap(p: &Aabb, q: &Aabb) -> bool {
+    p.min.x <= q.max.x
+        && q.min.x <= p.max.x
+        && p.min.y <= q.max.y
+        && q.min.y <= p.max.y
+        && p.min.z <= q.max.z
+        && q.min.z <= p.max.z
+}
+
+/// The triangle test behind every crate's ray callback: bvhkit's f64
+/// Möller–Trumbore (`Triangle::ray_hit`), limited to `t <= t_max`.
+#[inline]
+pub fn hit_triangle(tris: &[Triangle], prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
+    let r = Ray { t_max, ..*ray };
+    tris[prim as usize].ray_hit(&r)
+}
+
+/// One crate's answer for one ray: the primitive hit and its distance.
+pub type RayHit = Option<(u32, f32)>;
+
+/// The measurements of one tree: one row of the tables and the JSON.
+#[derive(Debug)]
+pub struct Measured {
+    /// The crate (`bvhkit`, `parry3d`, `obvhs`, `bvh`).
+    pub krate: &'static str,
+    /// Builder (and layout after a `/` where the tree was converted).
+    pub builder: String,
+    /// Build time from the triangles' boxes (conversion included for a
+    /// converted layout).
+    pub build: Timing,
+    /// Leaves of the tree.
+    pub leaves: usize,
+    /// SAH cost by [`sah`], where the tree is binary (`None` for wide ones).
+    pub sah: Option<f64>,
+    /// Bytes of nodes plus primitive indices.
+    pub bytes: usize,
+    /// The pair query (A against B, every triangle pair whose boxes
+    /// overlap), where this tree runs it.
+    pub pairs: Option<(Timing, PairSum)>,
+    /// Closest hits of every ray in `Scene::rays`, where this tree runs them.
+    pub rays: Option<(Timing, Vec<RayHit>)>,
+    /// What was chosen for this crate, for the notes under the table.
+    pub note: &'static str,
+}
+
+/// Random rays into `bounds`: origins in the box grown by half its size on
+/// each side, directions towards a random point inside it, normalised.
+/// Deterministic for a given `seed`.
+pub fn random_rays(bounds: &Aabb, n: usize, seed: u64) -> Vec<Ray> {
+    let mut s = seed;
+    let mut next = move || {
+        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        (mix(s) >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let (lo, size) = (bounds.min, bounds.max - bounds.min);
+    let mut point = |grow: f32| {
+        let u = Vec3::new(next(), next(), next()) * (1.0 + 2.0 * grow) - Vec3::splat(grow);
+        lo + u * size
+    };
+    (0..n)
+        .filter_map(|_| {
+            let origin = point(0.5);
+            let dir = (point(0.0) - origin).normalize_or_zero();
+            Ray::new(origin, dir, f32::INFINITY).ok()
+        })
+        .collect()
+}
+
+/// The bounding box of a slice of boxes.
+pub fn union(boxes: &[Aabb]) -> Aabb {
+    boxes.iter().fold(Aabb::EMPTY, |acc, b| {
+        Aabb::new(acc.min.min(b.min), acc.max.max(b.max))
+    })
+}
+
+/// The boxes of triangles.
+pub fn bounds_of(tris: &[Triangle]) -> Vec<Aabb> {
+    tris.iter().map(Primitive::bounds).collect()
+}
+
+/// Like [`time`], but `setup` makes a fresh input for every run outside the
+/// timed part (for builders that consume or mutate their input).
+pub fn time_setup<S, R>(
+    runs: usize,
+    mut setup: impl FnMut() -> S,
+    mut f: impl FnMut(S) -> R,
+) -> (Timing, R) {
+    std::hint::black_box(f(setup()));
+    let mut ms = Vec::with_capacity(runs.max(1));
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let input = setup();
+        let t = Instant::now();
+        let r = std::hint::black_box(f(input));
+        ms.push(t.elapsed().as_secs_f64() * 1e3);
+        last = Some(r);
+    }
+    ms.sort_by(f64::total_cmp);
+    let timing = Timing {
+        median_ms: ms[ms.len() / 2],
+        min_ms: ms[0],
+    };
+    (timing, last.expect("at least one run"))
+}
+
+impl Scene {
+    /// The scene for mesh `a`: `b` is `a` turned by 0.02 rad (about y, and
+    /// 0.01 about x) and shifted by 1% of the box size, so most triangles
+    /// overlap a few of their moved neighbours; `rays` random rays.
+    pub fn new(name: &str, a: Vec<Triangle>, rays: usize) -> Scene {
+        let boxes_a = bounds_of(&a);
+        let bounds = union(&boxes_a);
+        let shift = (bounds.max - bounds.min) * Vec3::new(0.01, 0.007, 0.004);
+        let b = bvhkit_std::scene::transformed(&a, 0.02, shift);
+        let boxes_b = bounds_of(&b);
+        let rays = random_rays(&bounds, rays, 0x5eed_0001);
+        Scene {
+            name: name.to_string(),
+            a,
+            b,
+            boxes_a,
+            boxes_b,
+            rays,
+        }
+    }
+}
+
+/// Brute-force references for small scenes (tests only: quadratic).
+#[cfg(test)]
+pub mod reference {
+    use super::*;
+
+    /// A small scene: a generated rock of 1 280 triangles, 300 rays.
+    pub fn small_scene() -> Scene {
+        Scene::new("rock-1280", bvhkit_std::scene::rock(3, 7), 300)
+    }
+
+    /// Every pair `(i, j)` with overlapping boxes, by testing all of them.
+    pub fn pairs(scene: &Scene) -> PairSum {
+        let mut sum = PairSum::default();
+        for (i, p) in scene.boxes_a.iter().enumerate() {
+            for (j, q) in scene.boxes_b.iter().enumerate() {
+                if boxes_overlap(p, q) {
+                    sum.add(i as u32, j as u32);
+                }
+            }
+        }
+        sum
+    }
+
+    /// The closest hit of each ray, testing every triangle.
+    pub fn rays(scene: &Scene) -> Vec<RayHit> {
+        scene
+            .rays
+            .iter()
+            .map(|r| {
+                let mut best: RayHit = None;
+                for i in 0..scene.a.len() as u32 {
+                    let t_max = best.map_or(f32::INFINITY, |b| b.1);
+                    if let Some(t) = hit_triangle(&scene.a, i, r, t_max) {
+                        if best.is_none_or(|b| t < b.1) {
+                            best = Some((i, t));
+                        }
+                    }
+                }
+                best
+            })
+            .collect()
+    }
+
+    /// Checks a crate's measured trees against the references: every pair
+    /// answer equal, every ray's distance equal (ties between primitives at
+    /// the same distance may name either).
+    pub fn check(scene: &Scene, measured: &[Measured]) {
+        let (want_pairs, want_rays) = (pairs(scene), rays(scene));
+        assert!(want_pairs.count > 0 && want_rays.iter().any(Option::is_some));
+        assert!(!measured.is_empty());
+        for m in measured {
+            assert!(m.leaves > 0 && m.bytes > 0, "{}: empty tree", m.builder);
+            if let Some((_, got)) = &m.pairs {
+                assert_eq!(*got, want_pairs, "{} {}: pairs", m.krate, m.builder);
+            }
+            if let Some((_, got)) = &m.rays {
+                assert_eq!(got.len(), want_rays.len());
+                for (k, (g, w)) in got.iter().zip(&want_rays).enumerate() {
+                    assert_eq!(
+                        g.map(|h| h.1),
+                        w.map(|h| h.1),
+                        "{} {}: ray {k}",
+                        m.krate,
+                        m.builder
+                    );
+                }
+            }
+            if let Some(s) = m.sah {
+                assert!(
+                    s.is_finite() && s >= 1.0,
+                    "{} {}: sah {s}",
+                    m.krate,
+                    m.builder
+                );
+            }
+        }
+    }
+}

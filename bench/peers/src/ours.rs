@@ -1,0 +1,131 @@
+//! bvhkit itself, as a user runs it: the default builder (`TopDown::default()`,
+//! binned SAH) with the default queries (`Pairs::new(..)`, `cast_ray` with
+//! `RayOrder::default()`), the same tree in the 4-wide and quantized 4-wide
+//! layouts, and PLOC (`BottomUp::default()`) as the fast builder.
+//!
+//! Trees are built from the scene's boxes (`Aabb` is a `Primitive`), the
+//! input every crate gets; the pair query reports pairs of those boxes, and
+//! rays test the triangles through the same indices.
+
+use crate::common::{sah, time, Measured, PairSum, RayHit, Runs, Scene, Timing};
+use bvhkit::build::BottomUp;
+use bvhkit::layout::{QuantNode, QuantizedWide, Wide, WideNode};
+use bvhkit::{Aabb, Bvh, Hierarchy, Pairs, Query, RayOrder, TopDown};
+use bvhkit_std::OwnedBvh;
+
+/// Builds and queries bvhkit's trees on `scene`.
+pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
+    let default = TopDown::default();
+    let top_down = |boxes: &[Aabb]| OwnedBvh::<Aabb>::build(&default, boxes).expect("builds");
+    let (build, a) = time(runs.build, || top_down(&scene.boxes_a));
+    let b = top_down(&scene.boxes_b);
+    let (va, vb) = (a.view(), b.view());
+    let mut rows = vec![measure(scene, runs, "sah", build, &va, &vb, &va)];
+
+    // The same tree collapsed to 4-wide nodes, and quantized to 8 bits per
+    // coordinate (64-byte nodes). Build time = the sah build + the collapse,
+    // each timed on its own (median plus median, minimum plus minimum).
+    let sah_build = build;
+    macro_rules! layout {
+        ($name:expr, $layout:ident, $empty:expr) => {{
+            let convert = |t: &Bvh<'_, Aabb>| {
+                let mut records = vec![$empty; $layout::records_needed(t).expect("fits")];
+                $layout::from_bvh(t, &mut records).expect("converts");
+                records
+            };
+            let (collapse, mut ra) = time(runs.build, || convert(&va));
+            let mut rb = convert(&vb);
+            let la = $layout::from_bvh(&va, &mut ra).expect("converts");
+            let lb = $layout::from_bvh(&vb, &mut rb).expect("converts");
+            let build = Timing {
+                median_ms: sah_build.median_ms + collapse.median_ms,
+                min_ms: sah_build.min_ms + collapse.min_ms,
+            };
+            rows.push(measure(scene, runs, $name, build, &la, &lb, &va));
+        }};
+    }
+    layout!("sah/wide4", Wide, WideNode::EMPTY);
+    layout!("sah/quantized4", QuantizedWide, QuantNode::EMPTY);
+
+    // PLOC, the fast builder (one primitive per leaf).
+    let ploc = |boxes: &[Aabb]| {
+        OwnedBvh::<Aabb>::build_bottom_up(&BottomUp::default(), boxes).expect("builds")
+    };
+    let (build, a) = time(runs.build, || ploc(&scene.boxes_a));
+    let b = ploc(&scene.boxes_b);
+    let (va, vb) = (a.view(), b.view());
+    rows.push(measure(scene, runs, "ploc", build, &va, &vb, &va));
+    rows
+}
+
+/// Queries one pair of trees (any layout) and scores the binary tree it
+/// came from.
+fn measure<H: Hierarchy<Bv = Aabb>>(
+    scene: &Scene,
+    runs: Runs,
+    builder: &str,
+    build: Timing,
+    a: &H,
+    b: &H,
+    binary: &Bvh<'_, Aabb>,
+) -> Measured {
+    let pairs = time(runs.pairs, || {
+        let mut sum = PairSum::default();
+        Pairs::new(a, &scene.boxes_a, b, &scene.boxes_b)
+            .for_each(|i, j| sum.add(i, j))
+            .expect("pair query");
+        sum
+    });
+    let rays = time(runs.rays, || {
+        scene
+            .rays
+            .iter()
+            .map(|r| -> RayHit {
+                a.cast_ray(&scene.a, r, RayOrder::default(), ())
+                    .expect("ray query")
+                    .map(|h| (h.prim, h.t))
+            })
+            .collect::<Vec<_>>()
+    });
+    let nodes = binary.nodes();
+    let leaves = nodes.iter().filter(|n| n.children().is_none()).count();
+    let wide = builder.contains('/');
+    Measured {
+        krate: "bvhkit",
+        builder: builder.to_string(),
+        build,
+        leaves,
+        sah: (!wide).then(|| {
+            let counts = nodes
+                .iter()
+                .map(|n| (n.bv, if n.children().is_none() { n.count } else { 0 }));
+            sah(&nodes[0].bv, counts)
+        }),
+        bytes: a.bytes(),
+        pairs: Some(pairs),
+        rays: Some(rays),
+        note: if wide {
+            "the sah tree collapsed to 4-wide nodes (build includes the collapse)"
+        } else if builder == "ploc" {
+            "BottomUp::default() (PLOC, radius 16), OwnedBvh::build_bottom_up"
+        } else {
+            "TopDown::default() (binned SAH, 16 bins, <= 4 per leaf), OwnedBvh::build"
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn answers_match_brute_force() {
+        let scene = crate::common::reference::small_scene();
+        let runs = crate::common::Runs {
+            build: 1,
+            pairs: 1,
+            rays: 1,
+        };
+        let m = super::run(&scene, runs);
+        crate::common::reference::check(&scene, &m);
+        assert_eq!(m.len(), 4);
+    }
+}
