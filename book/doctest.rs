@@ -51,4 +51,27 @@ mod tests {
             "SUMMARY.md links a chapter the doctest crate does not include"
         );
     }
+
+    /// The recorded peer run the performance chapter includes is there, is
+    /// stamped (date, machine, peers) and shows only checked, exact answers.
+    #[test]
+    fn recorded_peer_run_is_complete_and_exact() {
+        let chapter = include_str!("src/performance.md");
+        assert!(chapter.contains("{{#include measured/peers.md}}"));
+        let run = include_str!("src/measured/peers.md");
+        let stamp = run.lines().find(|l| l.contains(" UTC · ")).expect("stamp line");
+        assert!(stamp.contains("cores") && stamp.contains("parry3d") && stamp.contains("obvhs"));
+        let rows: Vec<&str> = run
+            .lines()
+            .skip_while(|l| !l.starts_with("#### Every tree"))
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| mesh"))
+            .collect();
+        for krate in ["bvhkit", "parry3d", "obvhs", "bvh"] {
+            assert!(rows.iter().any(|r| r.contains(&format!("| {krate} |"))), "{krate}");
+        }
+        for r in &rows {
+            assert!(r.trim_end().ends_with("| exact |"), "not checked exact: {r}");
+        }
+        assert!(!run.contains("WRONG"));
+    }
 }
