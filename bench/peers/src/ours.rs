@@ -1,14 +1,14 @@
 //! bvhkit itself, as a user runs it: the default builder (`TopDown::default()`,
 //! binned SAH) with the default queries (`Pairs::new(..)`, `cast_ray` with
 //! `RayOrder::default()`), the same tree in the 4-wide and quantized 4-wide
-//! layouts, and PLOC (`BottomUp::default()`) as the fast builder.
+//! layouts, and PLOC (`BottomUp::default()`, and at radius 1) as fast builders.
 //!
 //! Trees are built from the scene's boxes (`Aabb` is a `Primitive`), the
 //! input every crate gets; the pair query reports pairs of those boxes, and
 //! rays test the triangles through the same indices.
 
 use crate::common::{sah, time, Measured, PairSum, RayHit, Runs, Scene, Timing};
-use bvhkit::build::BottomUp;
+use bvhkit::build::{BottomUp, Method};
 use bvhkit::layout::{QuantNode, QuantizedWide, Wide, WideNode};
 use bvhkit::{Aabb, Bvh, Hierarchy, Pairs, Query, RayOrder, TopDown};
 use bvhkit_std::OwnedBvh;
@@ -47,14 +47,25 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
     layout!("sah/wide4", Wide, WideNode::EMPTY);
     layout!("sah/quantized4", QuantizedWide, QuantNode::EMPTY);
 
-    // PLOC, the fast builder (one primitive per leaf).
-    let ploc = |boxes: &[Aabb]| {
-        OwnedBvh::<Aabb>::build_bottom_up(&BottomUp::default(), boxes).expect("builds")
-    };
-    let (build, a) = time(runs.build, || ploc(&scene.boxes_a));
-    let b = ploc(&scene.boxes_b);
-    let (va, vb) = (a.view(), b.view());
-    rows.push(measure(scene, runs, "ploc", build, &va, &vb, &va));
+    // PLOC (one primitive per leaf): the default search radius, and radius 1
+    // (the radius of obvhs's fastest preset).
+    for (name, builder) in [
+        ("ploc", BottomUp::default()),
+        (
+            "ploc-r1",
+            BottomUp {
+                method: Method::Ploc { radius: 1 },
+                ..BottomUp::default()
+            },
+        ),
+    ] {
+        let ploc =
+            |boxes: &[Aabb]| OwnedBvh::<Aabb>::build_bottom_up(&builder, boxes).expect("builds");
+        let (build, a) = time(runs.build, || ploc(&scene.boxes_a));
+        let b = ploc(&scene.boxes_b);
+        let (va, vb) = (a.view(), b.view());
+        rows.push(measure(scene, runs, name, build, &va, &vb, &va));
+    }
     rows
 }
 
@@ -108,6 +119,8 @@ fn measure<H: Hierarchy<Bv = Aabb>>(
             "the sah tree collapsed to 4-wide nodes (build includes the collapse)"
         } else if builder == "ploc" {
             "BottomUp::default() (PLOC, radius 16), OwnedBvh::build_bottom_up"
+        } else if builder == "ploc-r1" {
+            "BottomUp with Method::Ploc { radius: 1 }, OwnedBvh::build_bottom_up"
         } else {
             "TopDown::default() (binned SAH, 16 bins, <= 4 per leaf), OwnedBvh::build"
         },
@@ -126,6 +139,6 @@ mod tests {
         };
         let m = super::run(&scene, runs);
         crate::common::reference::check(&scene, &m);
-        assert_eq!(m.len(), 4);
+        assert_eq!(m.len(), 5);
     }
 }
