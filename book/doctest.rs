@@ -59,7 +59,10 @@ mod tests {
         let chapter = include_str!("src/performance.md");
         assert!(chapter.contains("{{#include measured/peers.md}}"));
         let run = include_str!("src/measured/peers.md");
-        let stamp = run.lines().find(|l| l.contains(" UTC · ")).expect("stamp line");
+        let stamp = run
+            .lines()
+            .find(|l| l.contains(" UTC · "))
+            .expect("stamp line");
         assert!(stamp.contains("cores") && stamp.contains("parry3d") && stamp.contains("obvhs"));
         let rows: Vec<&str> = run
             .lines()
@@ -67,10 +70,16 @@ mod tests {
             .filter(|l| l.starts_with("| ") && !l.starts_with("| mesh"))
             .collect();
         for krate in ["bvhkit", "parry3d", "obvhs", "bvh"] {
-            assert!(rows.iter().any(|r| r.contains(&format!("| {krate} |"))), "{krate}");
+            assert!(
+                rows.iter().any(|r| r.contains(&format!("| {krate} |"))),
+                "{krate}"
+            );
         }
         for r in &rows {
-            assert!(r.trim_end().ends_with("| exact |"), "not checked exact: {r}");
+            assert!(
+                r.trim_end().ends_with("| exact |"),
+                "not checked exact: {r}"
+            );
         }
         assert!(!run.contains("WRONG"));
     }
