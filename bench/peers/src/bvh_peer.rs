@@ -214,16 +214,7 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
 mod tests {
     #[test]
     fn answers_match_brute_force() {
-        let scene = crate::common::reference::small_scene();
-        let m = super::run(
-            &scene,
-            crate::common::Runs {
-                build: 1,
-                pairs: 1,
-                rays: 1,
-            },
-        );
-        crate::common::reference::check(&scene, &m);
+        let m = crate::common::reference::run_and_check(super::run);
         assert_eq!(m.len(), 1);
         assert!(m[0].pairs.is_some() && m[0].rays.is_some() && m[0].sah.is_some());
     }

@@ -51,21 +51,7 @@ pub struct Timing {
 /// Runs `f` once uncounted (warm caches and allocator), then `runs` times
 /// counted; returns the timing and the last result.
 pub fn time<R>(runs: usize, mut f: impl FnMut() -> R) -> (Timing, R) {
-    std::hint::black_box(f());
-    let mut ms = Vec::with_capacity(runs.max(1));
-    let mut last = None;
-    for _ in 0..runs.max(1) {
-        let t = Instant::now();
-        let r = std::hint::black_box(f());
-        ms.push(t.elapsed().as_secs_f64() * 1e3);
-        last = Some(r);
-    }
-    ms.sort_by(f64::total_cmp);
-    let timing = Timing {
-        median_ms: ms[ms.len() / 2],
-        min_ms: ms[0],
-    };
-    (timing, last.expect("at least one run"))
+    time_setup(runs, || (), |()| f())
 }
 
 /// Surface area of a box, in f64.
@@ -278,22 +264,23 @@ pub mod reference {
 
     /// The closest hit of each ray, testing every triangle.
     pub fn rays(scene: &Scene) -> Vec<RayHit> {
-        scene
-            .rays
-            .iter()
-            .map(|r| {
-                let mut best: RayHit = None;
-                for i in 0..scene.a.len() as u32 {
-                    let t_max = best.map_or(f32::INFINITY, |b| b.1);
-                    if let Some(t) = hit_triangle(&scene.a, i, r, t_max) {
-                        if best.is_none_or(|b| t < b.1) {
-                            best = Some((i, t));
-                        }
-                    }
-                }
-                best
-            })
+        (0..scene.rays.len())
+            .map(|k| crate::truth::ray(scene, k))
             .collect()
+    }
+
+    /// Runs one crate's `run` on [`small_scene`] once and checks every tree
+    /// it measured; returns them for further assertions.
+    pub fn run_and_check(run: fn(&Scene, Runs) -> Vec<Measured>) -> Vec<Measured> {
+        let scene = small_scene();
+        let runs = Runs {
+            build: 1,
+            pairs: 1,
+            rays: 1,
+        };
+        let m = run(&scene, runs);
+        check(&scene, &m);
+        m
     }
 
     /// Checks a crate's measured trees against the references: every pair

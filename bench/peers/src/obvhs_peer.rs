@@ -263,16 +263,7 @@ fn to_obvhs_ray(r: &Ray) -> obvhs::ray::Ray {
 mod tests {
     #[test]
     fn answers_match_brute_force() {
-        let scene = crate::common::reference::small_scene();
-        let m = super::run(
-            &scene,
-            crate::common::Runs {
-                build: 1,
-                pairs: 1,
-                rays: 1,
-            },
-        );
-        crate::common::reference::check(&scene, &m);
+        let m = crate::common::reference::run_and_check(super::run);
         assert_eq!(m.len(), 6);
         assert!(m.iter().all(|m| m.rays.is_some()));
     }

@@ -131,14 +131,7 @@ fn measure<H: Hierarchy<Bv = Aabb>>(
 mod tests {
     #[test]
     fn answers_match_brute_force() {
-        let scene = crate::common::reference::small_scene();
-        let runs = crate::common::Runs {
-            build: 1,
-            pairs: 1,
-            rays: 1,
-        };
-        let m = super::run(&scene, runs);
-        crate::common::reference::check(&scene, &m);
+        let m = crate::common::reference::run_and_check(super::run);
         assert_eq!(m.len(), 5);
     }
 }
