@@ -212,14 +212,7 @@ impl Hierarchy for Wide<'_> {
         let ids = kids.as_slice();
         let Some(&first) = ids.first() else { return 0 };
         let r = &self.records[(first >> 2) as usize].boxes;
-        let mut hit = glam::BVec4A::TRUE;
-        for axis in 0..3 {
-            let lo = glam::Vec4::from_array(r.min[axis]);
-            let hi = glam::Vec4::from_array(r.max[axis]);
-            hit &= lo.cmple(glam::Vec4::splat(other.max[axis]));
-            hit &= hi.cmpge(glam::Vec4::splat(other.min[axis]));
-        }
-        hit.bitmask() & ((1 << ids.len()) - 1)
+        r.overlapping(other) & ((1 << ids.len()) - 1)
     }
 
     #[inline(always)]

@@ -12,8 +12,9 @@
 //! keeps the traversal stacks and the breadth-first queue plain `u32` arrays.
 
 use super::{Bvh, MAX_DEPTH};
-use crate::bv::BoundingVolume;
+use crate::bv::{Aabb, BoundingVolume};
 use crate::Error;
+use glam::{BVec4A, Vec3, Vec4};
 
 /// Most children a node of any representation has (the 4-wide layouts).
 pub const MAX_CHILDREN: usize = 4;
@@ -74,6 +75,57 @@ pub struct Boxes4 {
     pub min: [[f32; MAX_CHILDREN]; 3],
     /// Upper corners: `max[axis][child]`.
     pub max: [[f32; MAX_CHILDREN]; 3],
+}
+
+impl Boxes4 {
+    /// Four empty boxes (`min = +inf`, `max = -inf`).
+    pub const EMPTY: Boxes4 = Boxes4 {
+        min: [[f32::INFINITY; MAX_CHILDREN]; 3],
+        max: [[f32::NEG_INFINITY; MAX_CHILDREN]; 3],
+    };
+
+    /// Stores `b` as box `k` (`k < 4`).
+    #[inline(always)]
+    pub fn set(&mut self, k: usize, b: &Aabb) {
+        for axis in 0..3 {
+            self.min[axis][k] = b.min[axis];
+            self.max[axis][k] = b.max[axis];
+        }
+    }
+
+    /// Box `k` (`k < 4`).
+    #[inline]
+    pub fn get(&self, k: usize) -> Aabb {
+        Aabb::new(
+            Vec3::new(self.min[0][k], self.min[1][k], self.min[2][k]),
+            Vec3::new(self.max[0][k], self.max[1][k], self.max[2][k]),
+        )
+    }
+
+    /// Which of the four boxes overlap `other`: bit `k` for box `k`. The same
+    /// closed-interval test as [`Aabb::overlaps`] (touching counts, NaN never
+    /// overlaps), in six 4-lane comparisons instead of four separate tests.
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Boxes4};
+    /// use glam::Vec3;
+    /// let mut four = Boxes4::EMPTY;
+    /// four.set(0, &Aabb::new(Vec3::ZERO, Vec3::ONE));
+    /// four.set(2, &Aabb::new(Vec3::splat(5.0), Vec3::splat(6.0)));
+    /// let probe = Aabb::new(Vec3::splat(1.0), Vec3::splat(2.0)); // touches box 0
+    /// assert_eq!(four.overlapping(&probe), 0b0001);
+    /// ```
+    #[inline(always)]
+    pub fn overlapping(&self, other: &Aabb) -> u32 {
+        let mut hit = BVec4A::TRUE;
+        for axis in 0..3 {
+            let lo = Vec4::from_array(self.min[axis]);
+            let hi = Vec4::from_array(self.max[axis]);
+            hit &= lo.cmple(Vec4::splat(other.max[axis]));
+            hit &= hi.cmpge(Vec4::splat(other.min[axis]));
+        }
+        hit.bitmask()
+    }
 }
 
 /// What a node holds.
