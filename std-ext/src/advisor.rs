@@ -573,7 +573,7 @@ pub fn default_choice(query: QueryKind) -> Choice {
         volume: VolumeChoice::Aabb,
         layout: LayoutChoice::Canonical,
         walk: match query {
-            QueryKind::Pairs => Walk::Pairs(PairTraversal::Stack(Descent::Larger)),
+            QueryKind::Pairs => Walk::Pairs(PairTraversal::default()),
             QueryKind::Rays => Walk::Rays(RayOrder::DepthFirst),
         },
     }

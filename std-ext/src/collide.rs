@@ -59,7 +59,7 @@ impl Default for CollideOptions {
             volume: "aabb".into(),
             builder: "sah".into(),
             traversal: "stack".into(),
-            descent: Descent::Larger,
+            descent: Descent::Simultaneous,
             mode: Mode::All,
             runs: 5,
             verify: false,

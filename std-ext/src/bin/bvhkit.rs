@@ -58,7 +58,7 @@ enum Command {
         translate_b: Vec3Arg,
         /// Descent rule (stack and recursive traversals): which tree to open
         /// when two internal nodes overlap.
-        #[arg(long, default_value = "larger", value_parser = PossibleValuesParser::new(Descent::ALL.map(Descent::name)))]
+        #[arg(long, default_value = "simultaneous", value_parser = PossibleValuesParser::new(Descent::ALL.map(Descent::name)))]
         descent: String,
         /// Traversal: recursive (the lectures' code), stack (explicit fixed
         /// stack), simultaneous (both trees in lock step), leaf-directed (A to
