@@ -2,16 +2,17 @@
 //!
 //! Each unit cost is timed in isolation on samples from the scene itself:
 //! `Cv` on node pairs of the two trees, `Cu` on moving B's node volumes into
-//! A's frame, `Cp` on primitive pairs the traversal really visits (placing the
-//! primitive of B and deciding the pair exactly), and `Co` on a query whose
+//! A's frame, `Cp` on primitive pairs the traversal really visits (a box
+//! filter on every pair, placing B's primitive and deciding exactly only where
+//! the boxes overlap), and `Co` on a query whose
 //! root volumes miss. Then every descent rule is run with counters, and the
 //! predicted time is set against the measured one. What the model leaves out
 //! (stack pushes, the rule's decisions, cache misses) shows up as the error.
 
 use crate::{median_time, OwnedBvh};
 use bvhkit::{
-    BoundingVolume, Bvh, CostModel, Counts, Descent, Exact, PairTraversal, Pairs, Place, Rigid,
-    TopDown, Triangle,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Exact, PairTraversal, Pairs, Place,
+    Primitive, Rigid, TopDown, Triangle,
 };
 use serde::Serialize;
 use std::hint::black_box;
@@ -101,27 +102,49 @@ pub fn calibrate<B: BoundingVolume>(
     let cu = per_call(K, |i| {
         black_box(black_box(&nb[pick(nb.len(), i)].bv).transformed(&motion));
     });
-    // Primitive pairs the traversal really visits.
+    // Primitive pairs the traversal really reaches (`Np`). The leaf kernel
+    // tests each pair's boxes first (four of A's at once, each primitive of
+    // B placed once per four) and decides exactly only the pairs whose boxes
+    // overlap, so `Cp` is the per-pair box filter plus that fraction of the
+    // exact test.
     let mut visited = Vec::with_capacity(1 << 16);
+    let mut overlapping = 0u64;
+    let mut counts = Counts::default();
     Pairs::new(ta, a, tb, b)
         .in_frame(motion)
+        .counted(&mut counts)
         .answer(|p: &Triangle, q: &Triangle| {
+            overlapping += 1;
             if visited.len() < (1 << 16) {
                 visited.push((*p, *q));
             }
             false
         })
         .count()?;
-    let cp = if visited.is_empty() {
+    let cp = if visited.is_empty() || counts.prim_tests == 0 {
         0.0
     } else {
         let n = visited.len();
         let mut exact = Exact;
-        per_call(n * 4, |i| {
+        let exact_ns = per_call(n * 4, |i| {
             let (p, q) = &visited[i % n];
             let placed = Place::place(&motion, black_box(q));
             black_box(bvhkit::Answer::accept(&mut exact, p, &placed));
-        })
+        });
+        let place_ns = per_call(n * 4, |i| {
+            black_box(Place::place(&motion, black_box(&visited[i % n].1)).bounds());
+        });
+        let boxes: Vec<(Aabb, Aabb)> = visited
+            .iter()
+            .map(|(p, q)| (p.bounds(), q.bounds()))
+            .collect();
+        let box_ns = per_call(n * 4, |i| {
+            let (x, y) = &boxes[(i * 7) % n];
+            let (_, z) = &boxes[i % n];
+            black_box(black_box(x).overlaps(black_box(y)) | x.overlaps(z));
+        }) / 2.0;
+        let fraction = overlapping as f64 / counts.prim_tests as f64;
+        box_ns + place_ns / 4.0 + fraction * exact_ns
     };
     // Fixed cost: B moved far away, so only the roots are tested.
     let away = Rigid::translation(bvhkit::glam::Vec3::splat(
