@@ -58,14 +58,15 @@ pub struct BroadPhase<'s> {
 /// The world box of an object, padded so that the broad phase never drops a
 /// pair the narrow phase would report: the narrow phase rounds moved
 /// primitives to `f32` in A's frame, which can move them by a few ulps of
-/// their coordinates.
-pub fn world_bounds<B: BoundingVolume, P>(object: &Object<'_, B, P>) -> Aabb {
-    let model = object.tree.root().bv.aabb();
+/// their coordinates. `None` for an object whose tree is empty: it has no
+/// extent and touches nothing.
+pub fn world_bounds<B: BoundingVolume, P>(object: &Object<'_, B, P>) -> Option<Aabb> {
+    let model = object.tree.root()?.bv.aabb();
     let world = object.pose.apply_aabb(&model);
     let size = model.min.abs().max(model.max.abs()).max_element()
         + world.min.abs().max(world.max.abs()).max_element();
     let pad = Vec3::splat(size * 8.0 * f32::EPSILON);
-    Aabb::new(world.min - pad, world.max + pad)
+    Some(Aabb::new(world.min - pad, world.max + pad))
 }
 
 /// Broad phase: calls `f(a, b)` (with `a < b`) for every object pair whose
@@ -85,14 +86,16 @@ pub fn object_pairs<B: BoundingVolume, P>(
         needed: n,
         available,
     })?;
+    // An empty object keeps its slot (so tree leaves are object ids) with a
+    // stand-in point box; its pairs are dropped below, as it touches nothing.
     for (b, o) in boxes.iter_mut().zip(objects) {
-        *b = world_bounds(o);
+        *b = world_bounds(o).unwrap_or(Aabb::new(Vec3::ZERO, Vec3::ZERO));
     }
     let boxes = &*boxes;
     let tree = TopDown::default().build(boxes, scratch.nodes, scratch.indices)?;
     let mut found = 0;
     Pairs::new(&tree, boxes, &tree, boxes).for_each(|a, b| {
-        if a < b {
+        if a < b && !objects[a as usize].tree.is_empty() && !objects[b as usize].tree.is_empty() {
             f(a, b);
             found += 1;
         }

@@ -8,8 +8,6 @@ use core::fmt;
 /// Everything that can go wrong when building or querying a hierarchy.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Error {
-    /// The primitive slice was empty: there is nothing to bound.
-    EmptyInput,
     /// Primitive `primitive` has a NaN or infinite coordinate. One such value in a
     /// min/max fold would poison every box above it, so it is rejected up front.
     NonFiniteCoordinate {
@@ -96,7 +94,6 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Error::EmptyInput => write!(f, "no primitives were given"),
             Error::NonFiniteCoordinate { primitive } => {
                 write!(f, "primitive {primitive} has a NaN or infinite coordinate")
             }

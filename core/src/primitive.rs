@@ -136,11 +136,9 @@ impl<P: Primitive> Primitive for &P {
 }
 
 /// Checks a primitive slice once, before any min/max fold can hide a bad value.
+/// An empty slice is valid: it builds the empty tree.
 pub(crate) fn validate<P: Primitive>(prims: &[P]) -> Result<(), crate::Error> {
     use crate::Error;
-    if prims.is_empty() {
-        return Err(Error::EmptyInput);
-    }
     if prims.len() > crate::tree::MAX_PRIMITIVES {
         return Err(Error::IndexOverflow { count: prims.len() });
     }

@@ -34,7 +34,7 @@ pub struct TreeStats {
 }
 
 impl<B: BoundingVolume> Bvh<'_, B> {
-    /// Measures the tree.
+    /// Measures the tree. The empty tree measures zero everywhere.
     ///
     /// ```
     /// use bvhkit::{Aabb, Node, TopDown};
@@ -49,7 +49,9 @@ impl<B: BoundingVolume> Bvh<'_, B> {
     /// ```
     pub fn stats(&self) -> TreeStats {
         let nodes = self.nodes();
-        let root = &nodes[0].bv;
+        let Some(root) = nodes.first().map(|n| &n.bv) else {
+            return TreeStats::default();
+        };
         let root_area = (root.surface_area() as f64).max(f64::MIN_POSITIVE);
         let root_vol = (root.volume() as f64).max(f64::MIN_POSITIVE);
         let root_box_area = (root.aabb().surface_area_f64()).max(f64::MIN_POSITIVE);

@@ -682,7 +682,7 @@ pub fn checks() -> Vec<Check> {
         Check {
             exercise: 12,
             name: "a tree that is a single leaf",
-            points: 3,
+            points: 2,
             run: |e| {
                 let prims = [b([1.0; 3], [2.0; 3])];
                 let mut nodes = [Node::<Aabb>::EMPTY; 1];
@@ -691,6 +691,18 @@ pub fn checks() -> Vec<Check> {
                     return false;
                 };
                 e.to_preorder(&t) == [(prims[0], None)]
+            },
+        },
+        Check {
+            exercise: 12,
+            name: "the empty tree (no primitives) has no records",
+            points: 1,
+            run: |e| {
+                let none: [Aabb; 0] = [];
+                let Ok(t) = TopDown::default().build(&none, &mut [], &mut []) else {
+                    return false;
+                };
+                e.to_preorder(&t).is_empty()
             },
         },
         // Exercise 13
@@ -1400,6 +1412,13 @@ mod tests {
                     .iter()
                     .map(|n| (n.bv, n.children().map(|(_, r)| r)))
                     .collect(),
+                // Starts from the root without asking whether there is one.
+                36 => {
+                    let root = nodes[0];
+                    let mut out = vec![(root.bv, None)];
+                    out.extend(Reference.to_preorder(tree).into_iter().skip(1));
+                    out
+                }
                 // Preorder, but the link points at the left child (the next entry).
                 24 => Reference
                     .to_preorder(tree)
@@ -1540,6 +1559,7 @@ mod tests {
             (33, 15),
             (34, 15),
             (35, 15),
+            (36, 12),
         ] {
             let (e, p) = earned(&Wrong(wrong), exercise);
             assert!(

@@ -141,7 +141,8 @@ impl Exercises for Student {
     /// Hint: depth-first with a stack of node indices (push the right child
     /// first so the left one is emitted next). The right child's output
     /// position is known only once the whole left subtree is out: remember
-    /// which entry to patch. `tree.nodes()[i].children()` gives the children.
+    /// which entry to patch. `tree.nodes()[i].children()` gives the children;
+    /// `tree.root()` is `None` for a tree built from no primitives.
     fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
         let _ = tree;
         todo!("exercise 12")

@@ -599,8 +599,12 @@ impl Case {
         let b = mesh
             .iter()
             .fold(Aabb::EMPTY, |acc, t| acc.union(&Primitive::bounds(t)));
-        let centre = b.center();
-        let size = (b.max - b.min).length();
+        // An empty mesh has no box (an inverted one): place B at the origin.
+        let (centre, size) = if mesh.is_empty() {
+            (Vec3::ZERO, 0.0)
+        } else {
+            (b.center(), (b.max - b.min).length())
+        };
         let local: Vec<Triangle> = mesh.iter().map(|t| t.translated(-centre)).collect();
         let turn = Quat::from_rotation_y(0.35) * Quat::from_rotation_x(0.1);
         Ok(Case {

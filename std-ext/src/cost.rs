@@ -147,11 +147,12 @@ pub fn calibrate<B: BoundingVolume>(
         box_ns + place_ns / 4.0 + fraction * exact_ns
     };
     // Fixed cost: B moved far away, so only the roots are tested.
-    let away = Rigid::translation(bvhkit::glam::Vec3::splat(
-        4.0 * (ta.root().bv.aabb().max.abs().max_element()
-            + tb.root().bv.aabb().max.abs().max_element()),
-    ))?
-    .after(&motion);
+    let extent = |t: &Bvh<B>| {
+        t.root()
+            .map_or(0.0, |r| r.bv.aabb().max.abs().max_element())
+    };
+    let away = Rigid::translation(bvhkit::glam::Vec3::splat(4.0 * (extent(ta) + extent(tb))))?
+        .after(&motion);
     let whole = per_call(20_000, |_| {
         black_box(Pairs::new(ta, a, tb, b).in_frame(away).exact().count().ok());
     });

@@ -41,7 +41,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     /// Builds into freshly allocated storage (with the bounds cache of
     /// [`TopDown::build_cached`]), then trims it to what was used.
     pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len()).max(1)];
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; builder.index_capacity(prims.len())];
         let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; prims.len()];
         let (used, depth) = {
@@ -73,11 +73,13 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             work: &mut work,
             keys: &mut keys,
         };
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len()).max(1)];
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
-        let depth = builder
-            .build(prims, &mut nodes, &mut indices, &mut scratch)?
-            .depth();
+        let (used, depth) = {
+            let t = builder.build(prims, &mut nodes, &mut indices, &mut scratch)?;
+            (t.node_count(), t.depth())
+        };
+        nodes.truncate(used);
         Ok(OwnedBvh {
             nodes,
             indices,
@@ -92,13 +94,15 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     ) -> Result<Self, Error> {
         use bvhkit::build::DynNode;
         let n = prims.len();
-        let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n).max(1)];
+        let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut order = vec![0u32; n];
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n).max(1)];
+        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut indices = vec![0u32; n];
-        let depth = builder
-            .build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?
-            .depth();
+        let (used, depth) = {
+            let t = builder.build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?;
+            (t.node_count(), t.depth())
+        };
+        nodes.truncate(used);
         Ok(OwnedBvh {
             nodes,
             indices,

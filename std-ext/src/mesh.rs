@@ -35,7 +35,8 @@ impl fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
-/// Loads every triangle of a mesh file (all objects of an OBJ file together).
+/// Loads every triangle of a mesh file (all objects of an OBJ file together);
+/// a file with vertices but no faces gives no triangles, not an error.
 pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
     let fail = |reason: String| MeshError {
         path: path.to_path_buf(),
@@ -57,9 +58,7 @@ pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
             ))
         }
     };
-    if tris.is_empty() {
-        return Err(fail("no triangles in the file".into()));
-    }
+    // A file with no faces is a valid, empty mesh: it builds the empty tree.
     Ok(tris)
 }
 
@@ -501,11 +500,36 @@ mod tests {
     }
 
     #[test]
+    fn files_without_faces_load_as_empty_meshes() {
+        let mut binary_stl = vec![0u8; 80];
+        binary_stl.extend_from_slice(&0u32.to_le_bytes());
+        let mut paths = vec![write_bytes("empty-binary.stl", &binary_stl)];
+        for (name, text) in [
+            ("empty.obj", "# nothing\n"),
+            ("vertices-only.obj", "v 0 0 0\nv 1 0 0\n"),
+            ("empty.off", "OFF\n0 0 0\n"),
+            ("vertices-only.off", "OFF\n2 0 0\n0 0 0\n1 0 0\n"),
+            ("empty.stl", "solid nothing\nendsolid nothing\n"),
+            (
+                "empty.ply",
+                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
+            ),
+        ] {
+            paths.push(write(name, text));
+        }
+        for p in paths {
+            match load(&p) {
+                Ok(tris) => assert!(tris.is_empty(), "{}", p.display()),
+                Err(e) => panic!("{e}"),
+            }
+        }
+    }
+
+    #[test]
     fn bad_files_are_errors_naming_the_file() {
         for (name, text) in [
             ("bad_index.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n"),
             ("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
-            ("empty.obj", "# nothing\n"),
             ("garbage.obj", "v 0 zero 0\nf 1 1 1\n"),
         ] {
             let p = write(name, text);

@@ -100,12 +100,12 @@ fn run_with<B: BoundingVolume>(
     let tree = tree.map_err(|e| e.to_string())?;
     let v = tree.view();
     let s = v.stats();
-    let root_area = v.root().bv.aabb().half_area() as f64;
+    let root_area = v.root().map_or(0.0, |r| r.bv.aabb().half_area() as f64);
     let area_sum = v
         .nodes()
         .iter()
         .map(|n| n.bv.aabb().half_area() as f64)
-        .sum::<f64>()
+        .fold(0.0, |sum, a| sum + a) // +0.0 for the empty tree (f64's `sum` starts at -0.0)
         / root_area.max(f64::MIN_POSITIVE);
     let index = 4 * mesh.len();
     let records = |n: Result<usize, bvhkit::Error>, each: usize| match n {
@@ -201,6 +201,7 @@ pub fn render(r: &StatsReport) -> String {
     s += "\nmemory (records + 4-byte index per triangle):\n";
     for m in &r.memory {
         match &m.bytes {
+            Ok(b) if r.triangles == 0 => s += &format!("  {:<22} {:>12} bytes\n", m.layout, b),
             Ok(b) => {
                 s += &format!(
                     "  {:<22} {:>12} bytes {:>7.1} B/triangle\n",
@@ -218,6 +219,23 @@ pub fn render(r: &StatsReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stats_of_an_empty_mesh_are_zero_and_print_no_nan() {
+        let opts = StatsOptions {
+            builder: "sah".into(),
+            volume: "aabb".into(),
+            leaf_size: None,
+            runs: 1,
+        };
+        let r = run("empty", &[], &opts).unwrap();
+        assert_eq!((r.nodes, r.leaves, r.max_depth), (0, 0, 0));
+        assert_eq!((r.sah_cost, r.area_sum), (0.0, 0.0));
+        assert!(r.area_sum.is_sign_positive());
+        let text = render(&r);
+        assert!(!text.contains("NaN") && !text.contains("-0.00"), "{text}");
+        assert!(text.contains("(0 triangles)"));
+    }
 
     #[test]
     fn stats_of_the_rock_are_consistent() {

@@ -174,7 +174,6 @@ fn a_full_result_buffer_reports_the_true_count() {
 #[test]
 fn every_error_has_a_message() {
     let all = [
-        Error::EmptyInput,
         Error::NonFiniteCoordinate { primitive: 3 },
         Error::CoordinateOutOfRange { primitive: 3 },
         Error::IndexOverflow { count: 1 << 40 },

@@ -108,19 +108,17 @@ fn degenerate_primitives_build_and_query() {
     }
 }
 
-/// n = 0 is an error; n = 1, 2 work for every builder and query.
+/// n = 0 builds the empty tree (no nodes) even into no storage; n = 0..=3
+/// work for every builder and query.
 #[test]
 fn empty_single_and_two_primitive_inputs() {
     let none: [Triangle; 0] = [];
-    let mut nodes = [Node::<Aabb>::EMPTY; 1];
-    let mut idx = [0u32; 1];
-    assert_eq!(
-        TopDown::sah()
-            .build(&none, &mut nodes, &mut idx)
-            .unwrap_err(),
-        Error::EmptyInput
-    );
-    for n in 1..=3 {
+    let empty = TopDown::sah()
+        .build::<_, Aabb>(&none, &mut [], &mut [])
+        .unwrap();
+    assert!(empty.is_empty() && empty.root().is_none());
+    assert_eq!((empty.node_count(), empty.depth()), (0, 0));
+    for n in 0..=3 {
         let a: Vec<_> = (0..n).map(|i| tri_at(Vec3::splat(i as f32), 1.0)).collect();
         for cfg in all_configs() {
             assert_eq!(

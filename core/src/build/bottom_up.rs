@@ -132,7 +132,7 @@ impl BottomUp {
     /// Builds a tree with one primitive per leaf into `nodes` (at least
     /// [`max_nodes(n)`](crate::max_nodes)) and `indices` (at least `n`).
     ///
-    /// Errors: empty or non-finite input, buffers too small, an invalid
+    /// Empty input builds the empty tree. Errors: non-finite input, buffers too small, an invalid
     /// radius, or a tree deeper than [`MAX_DEPTH`](crate::MAX_DEPTH) (possible for adversarial
     /// input such as exponentially spaced points; the error says how deep).
     pub fn build<'a, B: BoundingVolume, P: Primitive>(
@@ -144,6 +144,9 @@ impl BottomUp {
     ) -> Result<Bvh<'a, B>, Error> {
         validate(prims)?;
         let n = prims.len();
+        if n == 0 {
+            return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
+        }
         let (nc, nw, nk) = Self::scratch_len(n);
         if nodes.len() < nc {
             return Err(Error::NodeCapacity {

@@ -629,14 +629,15 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     }
 
     /// Writes the tree in the query layout (children adjacent, one object per
-    /// leaf): `nodes` needs `2 * len() - 1` entries, `indices` `len()`.
+    /// leaf): `nodes` needs `2 * len() - 1` entries, `indices` `len()`. An
+    /// empty tree gives the empty `Bvh` (no nodes).
     pub fn to_bvh<'a>(
         &self,
         nodes: &'a mut [Node<B>],
         indices: &'a mut [u32],
     ) -> Result<Bvh<'a, B>, Error> {
         if self.root == NULL {
-            return Err(Error::EmptyInput);
+            return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
         }
         let n = self.leaves as usize;
         let needed = 2 * n - 1;
@@ -742,6 +743,9 @@ impl Insertion {
     ) -> Result<Bvh<'a, B>, Error> {
         validate(prims)?;
         let n = prims.len();
+        if n == 0 {
+            return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
+        }
         if order.len() < n {
             return Err(Error::IndexCapacity {
                 needed: n,

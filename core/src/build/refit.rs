@@ -136,9 +136,6 @@ fn check_inputs<B: BoundingVolume, P: Primitive>(
     prims: &[P],
     margin: f32,
 ) -> Result<(), Error> {
-    if nodes.is_empty() {
-        return Err(Error::EmptyInput);
-    }
     if !(margin >= 0.0 && margin.is_finite()) {
         return Err(Error::InvalidConfig(
             "the refit margin must be finite and >= 0",
@@ -207,7 +204,9 @@ impl<'s> Refit<'s> {
                 available: parents.len(),
             });
         }
-        parents[0] = NONE;
+        if let Some(root) = parents.first_mut() {
+            *root = NONE; // the empty tree has no root
+        }
         let available = leaf_of.len();
         for (i, n) in nodes.iter().enumerate() {
             match n.children() {
@@ -265,7 +264,15 @@ impl<'s> Refit<'s> {
                     primitive: p as usize,
                 });
             }
-            let leaf = self.leaf_of[p as usize] as usize;
+            let leaf = match self.leaf_of.get(p as usize) {
+                Some(&l) if (l as usize) < nodes.len() => l as usize,
+                _ => {
+                    return Err(Error::PrimitiveCountMismatch {
+                        tree: self.leaf_of.len(),
+                        given: prims.len(),
+                    })
+                }
+            };
             if nodes[leaf].bv.contains_aabb(&prim.bounds()) {
                 continue; // still inside the (fat) leaf volume
             }

@@ -383,7 +383,7 @@ impl TopDown {
                 available: indices,
             });
         }
-        if nodes == 0 {
+        if nodes == 0 && n > 0 {
             return Err(Error::NodeCapacity {
                 needed: max_nodes(n),
                 available: 0,
@@ -400,6 +400,9 @@ impl TopDown {
         idx: &mut [S::Item],
         scratch: &mut [u32],
     ) -> Result<(usize, u32), Error> {
+        if idx.is_empty() {
+            return Ok((0, 0)); // the empty tree: no nodes at all
+        }
         let (bounds, centroids) = bounds_of(src, idx);
         const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
         let mut stack = [Task {

@@ -77,6 +77,9 @@ impl<'a, B: BoundingVolume> Implicit<'a, B> {
     /// Entries the array needs for `bvh`: `2^(depth+1) - 1`. An error when
     /// that exceeds [`MAX_WASTE`](Self::MAX_WASTE) per node.
     pub fn slots_needed(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
+        if bvh.is_empty() {
+            return Ok(0);
+        }
         let nodes = bvh.node_count();
         let depth = bvh.depth();
         let slots = if depth >= 40 {
@@ -100,7 +103,7 @@ impl<'a, B: BoundingVolume> Implicit<'a, B> {
         let nodes = bvh.nodes();
         // (canonical node, slot); one waiting sibling per level.
         let mut stack = [(0u32, 0usize); crate::MAX_DEPTH + 2];
-        let mut top = 1;
+        let mut top = usize::from(!bvh.is_empty());
         while top > 0 {
             top -= 1;
             let (n, s) = stack[top];

@@ -73,7 +73,7 @@ pub(crate) fn check_capacity(needed: usize, available: usize) -> Result<(), Erro
 /// let (mut back, mut back_idx) = (vec![Node::EMPTY; bvh.node_count()], vec![0; 6]);
 /// let back = to_bvh(&pre, &mut back, &mut back_idx)?;
 /// assert_eq!(back.node_count(), bvh.node_count());
-/// assert_eq!(back.root().bv, bvh.root().bv);
+/// assert_eq!(back.root(), bvh.root());
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
 pub fn to_bvh<'o, H: Hierarchy>(
@@ -88,6 +88,9 @@ pub fn to_bvh<'o, H: Hierarchy>(
             needed: n,
             available: indices.len(),
         });
+    }
+    if h.is_empty() {
+        return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
     }
     // A work item is a group of 1..=4 nodes of `h` that becomes one node of
     // the output: a real node when alone, a virtual inner node otherwise.
@@ -277,6 +280,9 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
     mut emit: impl FnMut(usize, &[SlotSource]) -> Result<(), Error>,
 ) -> Result<usize, Error> {
     crate::tree::hierarchy::check_query(bvh, bvh.primitive_count())?;
+    if bvh.is_empty() {
+        return Ok(0); // no records, not even the header
+    }
     let nodes = bvh.nodes();
     let mut next = 1u32;
     // (canonical node whose collapse fills the record, record); the header

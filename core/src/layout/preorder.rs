@@ -131,7 +131,7 @@ impl<'a, B: BoundingVolume, O: Offset> Preorder<'a, B, O> {
         };
         // Fail before writing anything: the largest link is the last record
         // or the last leaf start.
-        fit(count - 1, "node index of a preorder link")?;
+        fit(count.saturating_sub(1), "node index of a preorder link")?;
         fit(
             bvh.primitive_count().saturating_sub(1),
             "leaf start of a preorder link",
@@ -139,7 +139,7 @@ impl<'a, B: BoundingVolume, O: Offset> Preorder<'a, B, O> {
         let nodes = bvh.nodes();
         // (canonical node, record whose right link points here, or MAX).
         let mut stack = [(0u32, usize::MAX); MAX_DEPTH + 2];
-        let mut top = 1;
+        let mut top = usize::from(count > 0); // the empty tree has no root
         let mut next = 0;
         while top > 0 {
             top -= 1;

@@ -144,7 +144,7 @@ impl QuantNode {
 /// let bvh = TopDown::default().build(&pts, &mut nodes, &mut idx)?;
 /// let mut recs = vec![QuantNode::EMPTY; QuantizedWide::records_needed(&bvh)?];
 /// let q = QuantizedWide::from_bvh(&bvh, &mut recs)?;
-/// assert!(q.bv(0).contains_aabb(&bvh.root().bv)); // rounded outward
+/// assert!(q.bv(0).contains_aabb(&bvh.root().unwrap().bv)); // rounded outward
 /// assert_eq!(core::mem::size_of::<QuantNode>(), 64);
 /// # Ok::<(), bvhkit::Error>(())
 /// ```

@@ -73,6 +73,9 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
     /// Records needed for `bvh`: one per node at an even depth.
     pub fn records_needed(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
         crate::tree::hierarchy::check_query(bvh, bvh.primitive_count())?;
+        if bvh.is_empty() {
+            return Ok(0);
+        }
         let nodes = bvh.nodes();
         let mut count = 0;
         let mut stack = Stack::<(u32, u32), DFS_STACK>::with((0, 0), bvh.depth());
@@ -99,6 +102,14 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
             });
         }
         let nodes = bvh.nodes();
+        if bvh.is_empty() {
+            return Ok(TriNodes {
+                records: &out[..0],
+                indices: bvh.indices(),
+                depth: 0,
+                nodes: 0,
+            });
+        }
         // (canonical node, record rooted at it)
         let mut stack = Stack::<(u32, u32), DFS_STACK>::with((0, 0), bvh.depth());
         let mut next = 1u32;
@@ -150,8 +161,12 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
     }
 
     /// Node places in use over places allocated (1.0 for a complete tree of
-    /// odd depth; lower when subtrees end at even depths).
+    /// odd depth; lower when subtrees end at even depths; 1.0 for the empty
+    /// tree, which allocates nothing).
     pub fn fill(&self) -> f32 {
+        if self.records.is_empty() {
+            return 1.0;
+        }
         self.nodes as f32 / (3 * self.records.len()) as f32
     }
 }

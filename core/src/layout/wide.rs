@@ -156,6 +156,9 @@ impl<'a> Wide<'a> {
 /// unevenly, so the source tree's depth only bounds it).
 pub(crate) fn measure_depth<H: Hierarchy>(h: &H) -> Result<usize, Error> {
     use crate::query::stack::Stack;
+    if h.is_empty() {
+        return Ok(0);
+    }
     let mut max = 0;
     let mut stack = Stack::<(u32, u32), { crate::tree::hierarchy::DFS_STACK }>::with(
         (h.root(), 0),

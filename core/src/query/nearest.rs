@@ -199,6 +199,9 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
     if !point.is_finite() {
         return Err(Error::InvalidConfig("the query point must be finite"));
     }
+    if h.is_empty() {
+        return Ok(None);
+    }
     let p = point.as_dvec3();
     let mut best: Option<Nearest> = None;
     let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();

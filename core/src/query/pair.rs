@@ -419,6 +419,9 @@ where
     fn run(self, mut sink: impl FnMut(u32, u32) -> ControlFlow<()>) -> Result<(), Error> {
         check_query(self.a, self.pa.len())?;
         check_query(self.b, self.pb.len())?;
+        if self.a.is_empty() || self.b.is_empty() {
+            return Ok(()); // nothing can overlap an empty tree
+        }
         // The explicit stack is fixed; refuse up front (no partial answer)
         // when the trees could outgrow it.
         let binary = A::ARITY == 2 && H::ARITY == 2;

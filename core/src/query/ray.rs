@@ -346,6 +346,9 @@ pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
     mut tally: impl Tally,
 ) -> Result<Option<Hit>, Error> {
     check_query(h, prims.len())?;
+    if h.is_empty() {
+        return Ok(None);
+    }
     let inv = ray.dir.recip();
     tally.bv_tests(1);
     let Some(t_root) = enter(h, h.root(), ray, inv) else {
@@ -486,6 +489,9 @@ pub(crate) fn ray_hits_any<H: Hierarchy + ?Sized, P: RayTarget>(
     mut tally: impl Tally,
 ) -> Result<Option<Hit>, Error> {
     check_query(h, prims.len())?;
+    if h.is_empty() {
+        return Ok(None);
+    }
     let inv = ray.dir.recip();
     let mut stack = Stack::<u32, DFS_STACK>::with(h.root(), h.depth());
     while let Some(n) = stack.pop() {

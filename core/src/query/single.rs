@@ -81,6 +81,9 @@ pub trait Query: Hierarchy {
         mut f: impl FnMut(u32),
     ) -> Result<usize, Error> {
         check_query(self, prims.len())?;
+        if self.is_empty() {
+            return Ok(0);
+        }
         let mut found = 0;
         let root = self.root();
         if !region.may_overlap(&self.bv(root)) {
@@ -121,6 +124,9 @@ pub trait Query: Hierarchy {
         mut f: impl FnMut(u32),
     ) -> Result<usize, Error> {
         check_query(self, prims.len())?;
+        if self.is_empty() {
+            return Ok(0);
+        }
         let mut found = 0;
         // Tests a leaf's primitives; returns how many were tested.
         let mut visit_leaf = |here: &[u32]| {
@@ -252,6 +258,12 @@ fn bfs<H: Hierarchy + ?Sized>(
     mut open: impl FnMut(u32) -> Option<Kids>,
 ) -> Result<(), Error> {
     let cap = queue.len();
+    if cap == 0 {
+        return Err(Error::QueueCapacity {
+            needed: 1,
+            available: 0,
+        });
+    }
     let (mut head, mut len) = (0usize, 1usize);
     queue[0] = h.root();
     while len > 0 {

@@ -171,7 +171,7 @@ pub trait Hierarchy {
     /// Most children of one node (2 for binary layouts).
     const ARITY: usize;
 
-    /// The root.
+    /// The root. Meaningless for the empty tree: see [`is_empty`](Self::is_empty).
     fn root(&self) -> u32;
     /// The volume of a node (decoded, for compressed layouts).
     fn bv(&self, node: u32) -> Self::Bv;
@@ -185,6 +185,13 @@ pub trait Hierarchy {
     fn node_count(&self) -> usize;
     /// Bytes of storage in use: node records and the primitive index array.
     fn bytes(&self) -> usize;
+
+    /// Whether the tree holds no nodes (built from no primitives). Queries
+    /// check it first and answer with nothing.
+    #[inline(always)]
+    fn is_empty(&self) -> bool {
+        self.node_count() == 0
+    }
 
     /// Whether a node is a leaf.
     #[inline(always)]

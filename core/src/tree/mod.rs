@@ -173,10 +173,17 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         self.indices
     }
 
-    /// The root node.
+    /// The root node; `None` for the empty tree (built from no primitives).
     #[inline]
-    pub fn root(&self) -> &'a Node<B> {
-        &self.nodes[0]
+    pub fn root(&self) -> Option<&'a Node<B>> {
+        self.nodes.first()
+    }
+
+    /// Whether the tree holds nothing (built from no primitives): every
+    /// query on it answers with nothing.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
     }
 
     /// Number of nodes in use.

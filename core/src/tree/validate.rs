@@ -19,6 +19,9 @@ pub(super) fn structure<B: BoundingVolume>(
     prim_count: usize,
     seen: &mut [u32],
 ) -> Result<u32, Error> {
+    if nodes.is_empty() && indices.is_empty() && prim_count == 0 {
+        return Ok(0); // the empty tree
+    }
     if nodes.is_empty() {
         return Err(Error::InvalidTree("no nodes"));
     }
