@@ -25,7 +25,7 @@ use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{max_nodes, Bvh, Node, MAX_DEPTH};
 use crate::Error;
-use glam::{DMat3, DVec3, Vec3};
+use glam::{BVec3A, DMat3, DVec3, Vec3, Vec3A};
 
 /// A top-down builder: a plain configuration value; [`build`](Self::build) does the work.
 ///
@@ -132,6 +132,32 @@ const EMPTY_BIN: Bin = Bin {
     count: 0,
 };
 
+/// A bin's bounds in 4-lane registers (the fourth lane is unused).
+#[derive(Clone, Copy, Debug)]
+struct LaneBin {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl LaneBin {
+    const EMPTY: LaneBin = LaneBin {
+        min: Vec3A::splat(f32::INFINITY),
+        max: Vec3A::splat(f32::NEG_INFINITY),
+    };
+    /// `Aabb::union`'s operand order, lane by lane.
+    #[inline(always)]
+    fn union(&self, other: &LaneBin) -> LaneBin {
+        LaneBin {
+            min: other.min.min(self.min),
+            max: other.max.max(self.max),
+        }
+    }
+    #[inline(always)]
+    fn aabb(&self) -> Aabb {
+        Aabb::new(self.min.into(), self.max.into())
+    }
+}
+
 /// A chosen split, before the range is partitioned.
 #[derive(Clone, Copy, Debug)]
 enum Plan {
@@ -148,6 +174,8 @@ enum Plan {
         scale: f32,
         k: usize,
         boundary: usize,
+        /// The left count and both children's boxes, when the bins gave them.
+        known: Option<(usize, [Aabb; 2])>,
     },
     /// The `mid` primitives with the smallest `dir . c` go left.
     Order { dir: Vec3, mid: usize },
@@ -589,6 +617,13 @@ impl Norm {
         let e = (b.extent() * self.inv).max(Vec3::ZERO);
         e.x * e.y + e.y * e.z + e.z * e.x
     }
+    /// [`half_area`](Self::half_area) of a bin in 4-lane registers: the same
+    /// operations lane by lane, so the same value.
+    #[inline(always)]
+    fn half_area_lanes(&self, b: &LaneBin) -> f32 {
+        let e = ((b.max - b.min) * self.inv).max(Vec3A::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
     /// Both the area and the longest side are within 1% of the parent's.
     fn nearly_as_large(&self, child: &Aabb, parent: &Aabb) -> bool {
         self.half_area(child) >= 0.99 * self.half_area(parent)
@@ -1014,57 +1049,81 @@ fn plan_binned_sah<S: Source, const N: usize>(
             scale: scale[a],
             k,
             boundary,
+            known: None,
         });
     }
-    let mut bins = [[EMPTY_BIN; N]; 3];
+    // Bin bounds in 4-lane registers: a union is two instructions, and the
+    // three bin indices come from one subtract and multiply. Each lane does
+    // the scalar path's arithmetic (`Aabb::center`, `even_bin`, `Aabb::union`
+    // with the same operand order), so the bins, and the tree, are the same
+    // as one axis at a time would give.
+    let mut lanes = [[LaneBin::EMPTY; N]; 3];
+    let mut counts = [[0u32; N]; 3];
+    let (lo_c, sc) = (Vec3A::from(c.min), Vec3A::from(Vec3::from(scale)));
+    let top = k.clamp(1, N) - 1; // < N: no bounds check in the loop
+    let top_f = Vec3A::splat(top as f32);
     for &i in range {
         let b = src.bounds(i);
-        let ctr = b.center();
+        let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
+        let t = ((lo * 0.5 + hi * 0.5) - lo_c) * sc;
+        // Clamping before the conversion is `(t as usize).min(top)`: top is
+        // a whole number and t is finite.
+        let t = t.max(Vec3A::ZERO).min(top_f);
         for a in 0..3 {
-            let bin = &mut bins[a][even_bin(ctr[a], c.min[a], scale[a], k)];
-            bin.bounds = bin.bounds.union(&b);
-            bin.count += 1;
+            let j = (t[a] as i32 as usize).min(top);
+            let bin = &mut lanes[a][j];
+            bin.min = lo.min(bin.min);
+            bin.max = hi.max(bin.max);
+            counts[a][j] += 1;
         }
     }
-    let mut best: Option<(f32, Plan)> = None;
-    for (a, bins) in bins.iter().enumerate() {
+    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, boundary)
+    for a in 0..3 {
         if scale[a] == 0.0 {
             continue;
         }
+        let (bins, counts) = (&lanes[a], &counts[a]);
         let mut right_cost = [0.0f32; N];
-        let mut acc = EMPTY_BIN;
+        let (mut acc, mut n) = (LaneBin::EMPTY, 0u32);
         for j in (1..k).rev() {
-            acc.bounds = acc.bounds.union(&bins[j].bounds);
-            acc.count += bins[j].count;
-            right_cost[j] = if acc.count > 0 {
-                norm.half_area(&acc.bounds) * acc.count as f32
+            acc = acc.union(&bins[j]);
+            n += counts[j];
+            right_cost[j] = if n > 0 {
+                norm.half_area_lanes(&acc) * n as f32
             } else {
                 f32::INFINITY
             };
         }
-        let mut left = EMPTY_BIN;
+        let (mut left, mut n) = (LaneBin::EMPTY, 0u32);
         for j in 1..k {
-            left.bounds = left.bounds.union(&bins[j - 1].bounds);
-            left.count += bins[j - 1].count;
-            if left.count == 0 || left.count as usize == range.len() {
+            left = left.union(&bins[j - 1]);
+            n += counts[j - 1];
+            if n == 0 || n as usize == range.len() {
                 continue;
             }
-            let cst = norm.half_area(&left.bounds) * left.count as f32 + right_cost[j];
-            if best.as_ref().is_none_or(|(b, _)| cst < *b) {
-                best = Some((
-                    cst,
-                    Plan::Axis {
-                        axis: a,
-                        lo: c.min[a],
-                        scale: scale[a],
-                        k,
-                        boundary: j,
-                    },
-                ));
+            let cst = norm.half_area_lanes(&left) * n as f32 + right_cost[j];
+            if best.is_none_or(|(b, _, _)| cst < b) {
+                best = Some((cst, a, j));
             }
         }
     }
-    best.map(|(_, p)| p)
+    let (_, a, boundary) = best?;
+    // The children's boxes are the unions of their bins, exactly the boxes
+    // of the primitives the partition will put on each side.
+    let (mut halves, mut mid) = ([LaneBin::EMPTY; 2], 0u32);
+    for j in 0..k {
+        let side = usize::from(j >= boundary);
+        halves[side] = halves[side].union(&lanes[a][j]);
+        mid += if side == 0 { counts[a][j] } else { 0 };
+    }
+    Some(Plan::Axis {
+        axis: a,
+        lo: c.min[a],
+        scale: scale[a],
+        k,
+        boundary,
+        known: Some((mid as usize, [halves[0].aabb(), halves[1].aabb()])),
+    })
 }
 
 /// The SAH-best boundary of a row of bins: (cost, boundary).
@@ -1130,8 +1189,28 @@ fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Halves {
             axis,
             lo,
             scale,
+            k: _,
+            boundary,
+            known: Some((mid, bounds)),
+        } => {
+            // `even_bin(c, lo, scale, k) < boundary` without the conversion:
+            // `boundary <= k - 1` is whole, so truncating first changes nothing.
+            let edge = boundary as f32;
+            let (left, centroids) = partition_known(src, range, |c| (c - lo) * scale < edge, axis);
+            debug_assert_eq!(left, mid, "the partition disagrees with the bins");
+            Halves {
+                mid: left,
+                bounds,
+                centroids,
+            }
+        }
+        Plan::Axis {
+            axis,
+            lo,
+            scale,
             k,
             boundary,
+            known: None,
         } => partition_by(src, range, |c| even_bin(c[axis], lo, scale, k) < boundary),
         Plan::Plane {
             dir,
@@ -1152,6 +1231,46 @@ fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Halves {
             }
         }
     }
+}
+
+/// Partitions when the children's boxes are known already (from the bins):
+/// only the centroid bounds are gathered. Branch-free (Lomuto's scheme: every
+/// element is swapped into place, and the left end advances by the test's
+/// result), because at the top of the tree the test is a coin toss that a
+/// branch predictor loses half the time. Returns the left count and the
+/// centroid bounds of both sides.
+#[inline(always)]
+fn partition_known<S: Source>(
+    src: &S,
+    range: &mut [S::Item],
+    goes_left: impl Fn(f32) -> bool,
+    axis: usize,
+) -> (usize, [Aabb; 2]) {
+    let (mut lmin, mut lmax) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+    let (mut rmin, mut rmax) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+    let mut j = 0;
+    for i in 0..range.len() {
+        let item = range[i];
+        let b = src.bounds(item);
+        let c = Vec3A::from(b.min) * 0.5 + Vec3A::from(b.max) * 0.5;
+        let left = goes_left(c[axis]);
+        let m = BVec3A::splat(left);
+        // Same operand order as `Aabb::grow`.
+        lmin = Vec3A::select(m, c.min(lmin), lmin);
+        lmax = Vec3A::select(m, c.max(lmax), lmax);
+        rmin = Vec3A::select(m, rmin, c.min(rmin));
+        rmax = Vec3A::select(m, rmax, c.max(rmax));
+        range[i] = range[j];
+        range[j] = item;
+        j += usize::from(left);
+    }
+    (
+        j,
+        [
+            Aabb::new(lmin.into(), lmax.into()),
+            Aabb::new(rmin.into(), rmax.into()),
+        ],
+    )
 }
 
 /// In-place two-pointer partition; every element is classified exactly once
