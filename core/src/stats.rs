@@ -52,8 +52,16 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         let Some(root) = nodes.first().map(|n| &n.bv) else {
             return TreeStats::default();
         };
-        let root_area = (root.surface_area() as f64).max(f64::MIN_POSITIVE);
-        let root_vol = (root.volume() as f64).max(f64::MIN_POSITIVE);
+        // Areas and volumes in the root's own unit: a tree 1e30 wide would
+        // overflow f32 areas (1e60); the ratios do not depend on the unit.
+        let size = root.aabb().extent().max_element();
+        let unit = if size > 0.0 && size.is_finite() {
+            size
+        } else {
+            1.0
+        };
+        let root_area = (root.surface_area_in(unit) as f64).max(f64::MIN_POSITIVE);
+        let root_vol = (root.volume_in(unit) as f64).max(f64::MIN_POSITIVE);
         let root_box_area = (root.aabb().surface_area_f64()).max(f64::MIN_POSITIVE);
         let mut s = TreeStats {
             nodes: nodes.len(),
@@ -67,8 +75,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
             top -= 1;
             let (i, d) = stack[top];
             let node = &nodes[i as usize];
-            let area = node.bv.surface_area() as f64 / root_area;
-            s.volume_sum += node.bv.volume() as f64 / root_vol;
+            let area = node.bv.surface_area_in(unit) as f64 / root_area;
+            s.volume_sum += node.bv.volume_in(unit) as f64 / root_vol;
             match node.children() {
                 None => {
                     s.leaves += 1;

@@ -4,8 +4,8 @@
 use bvhkit::build::{BottomUp, MergeMetric, Method};
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Exact, Obb, Rigid, Same, Sphere,
-    TopDown, Triangle,
+    brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Exact, Obb, PairTraversal, Pairs,
+    Rigid, Same, Sphere, TopDown, Triangle,
 };
 use bvhkit_tests::*;
 use proptest::prelude::*;
@@ -96,22 +96,113 @@ fn tiny_inputs_build() {
     }
 }
 
-/// Exponentially spaced points make the greedy merge build a chain; past
-/// MAX_DEPTH that must be an error, not a panic or a stack overflow.
+/// The scenes PLOC used to refuse ("tree depth 65 exceeds the traversal
+/// stack capacity 64"): identical triangles (equal costs everywhere), a
+/// geometric progression (merging is always cheapest at the small end, a
+/// chain), and a scene 1e30 wide (areas overflowed f32). Every builder
+/// builds them, no deeper than MAX_DEPTH, and answers like brute force.
 #[test]
-fn chains_deeper_than_the_query_stack_are_an_error() {
-    let pts: Vec<Vec3> = (0..90)
+fn adversarial_scenes_build_and_answer_like_brute_force() {
+    let tri = |o: Vec3, s: f32| Triangle::new(o, o + Vec3::X * s, o + Vec3::Y * s);
+    let identical = vec![tri(Vec3::ZERO, 1.0); 300];
+    let graded: Vec<Triangle> = (0..120)
+        .map(|i| {
+            let x = 1e-12 * 1.5f32.powi(i);
+            tri(Vec3::new(x, 0.0, 0.0), x * 0.1)
+        })
+        .collect();
+    let mut state = 7u64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let huge: Vec<Triangle> = (0..600)
+        .map(|_| {
+            let o = Vec3::new(uniform(), uniform(), uniform()) * 1e30;
+            tri(o, 1e28 * (0.1 + uniform()))
+        })
+        .collect();
+    let points: Vec<Vec3> = (0..90)
         .map(|i| Vec3::new(1.3f32.powi(i), 0.0, 0.0))
         .collect();
+    let builders = [
+        BottomUp::default(),
+        BottomUp {
+            method: Method::Ploc { radius: 1 },
+            metric: MergeMetric::SurfaceArea,
+        },
+        BottomUp {
+            method: Method::Ploc { radius: 16 },
+            metric: MergeMetric::Volume,
+        },
+    ];
+    for (name, scene) in [
+        ("identical", &identical),
+        ("graded", &graded),
+        ("1e30", &huge),
+    ] {
+        for cfg in builders {
+            let (nodes, idx, depth) = build_bottom_up::<Aabb, _>(&cfg, scene)
+                .unwrap_or_else(|e| panic!("{name} {cfg:?}: {e}"));
+            assert!(depth <= bvhkit::MAX_DEPTH, "{name} {cfg:?}: depth {depth}");
+            let t = open(&nodes, &idx, scene);
+            let m = Rigid::translation(Vec3::X * 1e-13).unwrap();
+            let mut want = Vec::new();
+            brute_force::pairs_placed(scene, scene, &m, Exact, |i, j| want.push((i, j)));
+            want.sort_unstable();
+            for traversal in [PairTraversal::default(), PairTraversal::LeafDirected] {
+                let mut got = Vec::new();
+                Pairs::new(&t, scene, &t, scene)
+                    .traversal(traversal)
+                    .in_frame(m)
+                    .exact()
+                    .for_each(|i, j| got.push((i, j)))
+                    .unwrap();
+                got.sort_unstable();
+                // Not `assert_eq!`: a million pairs would be printed.
+                assert!(
+                    got == want,
+                    "{name} {cfg:?} {traversal:?}: {} pairs, want {}",
+                    got.len(),
+                    want.len()
+                );
+            }
+            if name == "identical" {
+                // Equal costs pair up and halve: a balanced tree.
+                assert!(depth <= 10, "{cfg:?}: identical triangles to depth {depth}");
+            }
+        }
+        // Other volumes: the rebuilt subtrees' parents still contain them
+        // (`open` validates containment).
+        let cfg = BottomUp::default();
+        let (nodes, idx, _) = build_bottom_up::<Sphere, _>(&cfg, scene).unwrap();
+        open(&nodes, &idx, scene);
+        let (nodes, idx, _) = build_bottom_up::<Obb, _>(&cfg, scene).unwrap();
+        open(&nodes, &idx, scene);
+    }
+    // Costs in the scene's unit: at 1e30, PLOC's tree is as good as usual
+    // against the top-down SAH tree (in raw f32, every merge wider than
+    // about 1e19 cost infinity, and all of them tied).
+    let sah = |nodes: &[bvhkit::Node<Aabb>], idx: &[u32], scene: &[Triangle]| {
+        open(nodes, idx, scene).stats().sah_cost
+    };
+    let (n1, i1, _) = build_bottom_up::<Aabb, _>(&BottomUp::default(), &huge).unwrap();
+    let (n2, i2, _) = build::<Aabb, _>(&TopDown::sah().with_max_leaf_size(1), &huge).unwrap();
+    let (ploc, top_down) = (sah(&n1, &i1, &huge), sah(&n2, &i2, &huge));
+    assert!(
+        ploc < 1.2 * top_down,
+        "PLOC SAH {ploc} against top-down {top_down}"
+    );
     for cfg in [
         BottomUp::exhaustive(MergeMetric::SurfaceArea),
         BottomUp::default(),
     ] {
-        match build_bottom_up::<Aabb, _>(&cfg, &pts) {
-            Err(Error::StackOverflow { depth, capacity }) => assert!(depth > capacity),
-            Ok((_, _, depth)) => assert!(depth <= bvhkit::MAX_DEPTH),
-            Err(e) => panic!("unexpected error {e}"),
-        }
+        let (_, _, depth) = build_bottom_up::<Aabb, _>(&cfg, &points).unwrap();
+        assert!(depth <= bvhkit::MAX_DEPTH);
+        let (_, _, depth) = build_bottom_up::<Aabb, _>(&cfg, &graded[..100]).unwrap();
+        assert!(depth <= bvhkit::MAX_DEPTH, "{cfg:?}: {depth}");
     }
 }
 

@@ -187,7 +187,7 @@ impl BottomUp {
             *a = i as u32;
         }
         let root = match self.method {
-            Method::Exhaustive => exhaustive(clusters, active, n, self.metric),
+            Method::Exhaustive => exhaustive(clusters, active, n, self.metric, scene_unit(prims)),
             Method::Ploc { radius } => ploc(
                 prims,
                 clusters,
@@ -198,23 +198,146 @@ impl BottomUp {
                 self.metric,
             ),
         };
-        let depth = super::emit_layout(root, nodes, indices, |c| {
-            let cl = &clusters[c as usize];
-            let kind = if cl.left == cl.right {
-                Err(cl.left)
-            } else {
-                Ok((cl.left, cl.right))
-            };
-            (cl.bv, kind)
-        })?;
+        let emit = |clusters: &[Cluster<B>], nodes: &mut [Node<B>], indices: &mut [u32]| {
+            super::emit_layout(root, nodes, indices, |c| {
+                let cl = &clusters[c as usize];
+                let kind = if cl.left == cl.right {
+                    Err(cl.left)
+                } else {
+                    Ok((cl.left, cl.right))
+                };
+                (cl.bv, kind)
+            })
+        };
+        let depth = match emit(clusters, nodes, indices) {
+            Err(Error::StackOverflow { .. }) => {
+                // Merging the cheapest pairs can make a chain (primitives
+                // growing geometrically along a line: each merge is cheapest
+                // at the small end). Depth is no reason to refuse: every
+                // subtree hanging below depth MAX_DEPTH / 2 is rebuilt
+                // balanced over its primitives, in their order along it.
+                bound_depth(clusters, root, n, scratch.work);
+                emit(clusters, nodes, indices)?
+            }
+            other => other?,
+        };
         Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth))
     }
 }
 
-fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric) -> f32 {
+/// The merge cost, measured with the scene's size as the unit of length.
+fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, unit: f32) -> f32 {
     match metric {
-        MergeMetric::SurfaceArea => bv.surface_area(),
-        MergeMetric::Volume => bv.volume(),
+        MergeMetric::SurfaceArea => bv.surface_area_in(unit),
+        MergeMetric::Volume => bv.volume_in(unit),
+    }
+}
+
+/// The scene's size, the unit merge costs are measured in: areas near 1 for
+/// the largest merges, whether the scene is 1e-12 or 1e30 wide.
+fn scene_unit<P: Primitive>(prims: &[P]) -> f32 {
+    let scene = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds()));
+    let size = scene.extent().max_element();
+    if size > 0.0 && size.is_finite() {
+        size
+    } else {
+        1.0
+    }
+}
+
+/// Rebuilds, balanced, every subtree of the cluster tree under `root` whose
+/// root sits at depth `MAX_DEPTH / 2`: afterwards no leaf is deeper than
+/// `MAX_DEPTH / 2 + log2(n)`. `work` (`2n` words) is scratch: the subtree's
+/// primitives in order at the front, the walk's stack at the back; the
+/// subtree's inner clusters are reused, chained through their `left` field
+/// while free.
+fn bound_depth<B: BoundingVolume>(
+    clusters: &mut [Cluster<B>],
+    root: u32,
+    n: usize,
+    work: &mut [u32],
+) {
+    const CUT: usize = crate::MAX_DEPTH / 2;
+    const NONE: u32 = u32::MAX;
+    let is_leaf = |c: &Cluster<B>| c.left == c.right;
+    // Post-order down to the cut: subtrees at the cut are rebuilt on the way
+    // down, inner clusters above it re-merged on the way up (a rebuilt
+    // subtree may merge, say, spheres in another order: its parent must
+    // contain the new volume). At most two entries wait per level.
+    let mut stack = [(0u32, 0usize, false); 2 * CUT + 4];
+    stack[0] = (root, 0, false);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (c, d, children_done) = stack[top];
+        let cl = clusters[c as usize];
+        if is_leaf(&cl) {
+            continue;
+        }
+        if children_done {
+            let bv = clusters[cl.left as usize]
+                .bv
+                .merge(&clusters[cl.right as usize].bv);
+            clusters[c as usize].bv = bv;
+            continue;
+        }
+        if d < CUT {
+            stack[top] = (c, d, true);
+            stack[top + 1] = (cl.right, d + 1, false);
+            stack[top + 2] = (cl.left, d + 1, false);
+            top += 3;
+            continue;
+        }
+        // Collect the leaves below `c` in order; free its inner clusters.
+        let (leaves, walk) = work.split_at_mut(n);
+        let (mut m, mut sp, mut free) = (0usize, 1usize, NONE);
+        walk[0] = c;
+        while sp > 0 {
+            sp -= 1;
+            let x = walk[sp];
+            let cl = clusters[x as usize];
+            if is_leaf(&cl) {
+                leaves[m] = x;
+                m += 1;
+                continue;
+            }
+            walk[sp] = cl.right;
+            walk[sp + 1] = cl.left;
+            sp += 2;
+            if x != c {
+                clusters[x as usize].left = free;
+                free = x;
+            }
+        }
+        // Pair neighbours round by round; the last merge reuses `c`.
+        let mut len = m;
+        while len > 1 {
+            let mut w = 0;
+            let mut i = 0;
+            while i < len {
+                if i + 1 < len {
+                    let id = if len == 2 {
+                        c
+                    } else {
+                        let id = free;
+                        free = clusters[id as usize].left;
+                        id
+                    };
+                    let (l, r) = (leaves[i], leaves[i + 1]);
+                    clusters[id as usize] = Cluster {
+                        bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
+                        left: l,
+                        right: r,
+                    };
+                    leaves[w] = id;
+                } else {
+                    leaves[w] = leaves[i];
+                }
+                w += 1;
+                i += 2;
+            }
+            len = w;
+        }
     }
 }
 
@@ -224,6 +347,7 @@ fn exhaustive<B: BoundingVolume>(
     active: &mut [u32],
     n: usize,
     metric: MergeMetric,
+    unit: f32,
 ) -> u32 {
     let mut k = n;
     let mut next = n as u32;
@@ -234,7 +358,7 @@ fn exhaustive<B: BoundingVolume>(
                 let m = clusters[active[i] as usize]
                     .bv
                     .merge(&clusters[active[j] as usize].bv);
-                let c = cost(&m, metric);
+                let c = cost(&m, metric, unit);
                 // `<` keeps the first best pair: deterministic ties.
                 if c < best {
                     (best, bi, bj) = (c, i, j);
@@ -266,6 +390,7 @@ fn ploc<B: BoundingVolume, P: Primitive>(
     metric: MergeMetric,
 ) -> u32 {
     let n = prims.len();
+    let unit = scene_unit(prims);
     // Morton order of the primitive centres (ties broken by index).
     let mut centres = Aabb::EMPTY;
     for p in prims {
@@ -302,7 +427,7 @@ fn ploc<B: BoundingVolume, P: Primitive>(
                 if j == i {
                     continue;
                 }
-                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric);
+                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, unit);
                 // Ties go to the nearer index on the curve, then the lower one.
                 if c < best || (c == best && tie_prefers(i, j, partner)) {
                     (best, partner) = (c, j);
@@ -353,14 +478,17 @@ fn ploc<B: BoundingVolume, P: Primitive>(
     active[0]
 }
 
-/// Among equal costs, prefer the candidate `j` closer to `i` on the curve,
-/// then the lower index; `current` is the best so far.
+/// Among equal costs, prefer the candidate `j` closer to `i` on the curve;
+/// between the two at the same distance, the one that makes the pair
+/// `(2m, 2m + 1)`, so that runs of equal costs (identical primitives) pair
+/// up and halve, instead of all pointing the same way and merging one pair
+/// per round into a chain. `current` is the best so far.
 fn tie_prefers(i: usize, j: usize, current: usize) -> bool {
     if current == i {
         return true;
     }
     let (dj, dc) = (i.abs_diff(j), i.abs_diff(current));
-    dj < dc || (dj == dc && j < current)
+    dj < dc || (dj == dc && j == i ^ 1)
 }
 
 /// Interleaves the low 10 bits of x, y, z.

@@ -200,6 +200,14 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
         BoundingVolume::surface_area(&self.aabb())
     }
 
+    fn surface_area_in(&self, unit: f32) -> f32 {
+        self.aabb().surface_area_in(unit)
+    }
+
+    fn volume_in(&self, unit: f32) -> f32 {
+        self.aabb().volume_in(unit)
+    }
+
     fn aabb(&self) -> Aabb {
         Aabb::new(
             Vec3::new(self.min[0], self.min[1], self.min[2]),

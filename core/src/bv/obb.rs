@@ -312,6 +312,16 @@ impl BoundingVolume for Obb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
+    fn surface_area_in(&self, unit: f32) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * 2.0 / unit;
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    fn volume_in(&self, unit: f32) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * 2.0 / unit;
+        e.x * e.y * e.z
+    }
+
     fn aabb(&self) -> Aabb {
         if self.is_empty() {
             return Aabb::EMPTY;

@@ -476,6 +476,16 @@ impl BoundingVolume for Sphere {
         4.0 * core::f32::consts::PI * r * r
     }
 
+    fn surface_area_in(&self, unit: f32) -> f32 {
+        let r = self.radius.max(0.0) / unit;
+        4.0 * core::f32::consts::PI * r * r
+    }
+
+    fn volume_in(&self, unit: f32) -> f32 {
+        let r = self.radius.max(0.0) / unit;
+        4.0 / 3.0 * core::f32::consts::PI * r * r * r
+    }
+
     fn size(&self) -> f32 {
         self.radius
     }
