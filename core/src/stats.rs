@@ -54,14 +54,14 @@ impl<B: BoundingVolume> Bvh<'_, B> {
         };
         // Areas and volumes in the root's own unit: a tree 1e30 wide would
         // overflow f32 areas (1e60); the ratios do not depend on the unit.
-        let size = root.aabb().extent().max_element();
-        let unit = if size > 0.0 && size.is_finite() {
-            size
+        let scale = 1.0 / root.aabb().extent().max_element();
+        let scale = if scale > 0.0 && scale.is_finite() {
+            scale
         } else {
             1.0
         };
-        let root_area = (root.surface_area_in(unit) as f64).max(f64::MIN_POSITIVE);
-        let root_vol = (root.volume_in(unit) as f64).max(f64::MIN_POSITIVE);
+        let root_area = (root.surface_area_scaled(scale) as f64).max(f64::MIN_POSITIVE);
+        let root_vol = (root.volume_scaled(scale) as f64).max(f64::MIN_POSITIVE);
         let root_box_area = (root.aabb().surface_area_f64()).max(f64::MIN_POSITIVE);
         let mut s = TreeStats {
             nodes: nodes.len(),
@@ -75,8 +75,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
             top -= 1;
             let (i, d) = stack[top];
             let node = &nodes[i as usize];
-            let area = node.bv.surface_area_in(unit) as f64 / root_area;
-            s.volume_sum += node.bv.volume_in(unit) as f64 / root_vol;
+            let area = node.bv.surface_area_scaled(scale) as f64 / root_area;
+            s.volume_sum += node.bv.volume_scaled(scale) as f64 / root_vol;
             match node.children() {
                 None => {
                     s.leaves += 1;

@@ -187,7 +187,7 @@ impl BottomUp {
             *a = i as u32;
         }
         let root = match self.method {
-            Method::Exhaustive => exhaustive(clusters, active, n, self.metric, scene_unit(prims)),
+            Method::Exhaustive => exhaustive(clusters, active, n, self.metric, scene_scale(prims)),
             Method::Ploc { radius } => ploc(
                 prims,
                 clusters,
@@ -225,21 +225,22 @@ impl BottomUp {
     }
 }
 
-/// The merge cost, measured with the scene's size as the unit of length.
-fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, unit: f32) -> f32 {
+/// The merge cost, with lengths scaled by `scale` (1 / the scene's size).
+fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, scale: f32) -> f32 {
     match metric {
-        MergeMetric::SurfaceArea => bv.surface_area_in(unit),
-        MergeMetric::Volume => bv.volume_in(unit),
+        MergeMetric::SurfaceArea => bv.surface_area_scaled(scale),
+        MergeMetric::Volume => bv.volume_scaled(scale),
     }
 }
 
-/// The scene's size, the unit merge costs are measured in: areas near 1 for
-/// the largest merges, whether the scene is 1e-12 or 1e30 wide.
-fn scene_unit<P: Primitive>(prims: &[P]) -> f32 {
+/// 1 / the scene's size: merge costs take the scene's size as the unit of
+/// length, so the largest merges cost about 1 whether the scene is 1e-12 or
+/// 1e30 wide.
+fn scene_scale<P: Primitive>(prims: &[P]) -> f32 {
     let scene = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds()));
-    let size = scene.extent().max_element();
-    if size > 0.0 && size.is_finite() {
-        size
+    let scale = 1.0 / scene.extent().max_element();
+    if scale > 0.0 && scale.is_finite() {
+        scale
     } else {
         1.0
     }
@@ -347,7 +348,7 @@ fn exhaustive<B: BoundingVolume>(
     active: &mut [u32],
     n: usize,
     metric: MergeMetric,
-    unit: f32,
+    scale: f32,
 ) -> u32 {
     let mut k = n;
     let mut next = n as u32;
@@ -358,7 +359,7 @@ fn exhaustive<B: BoundingVolume>(
                 let m = clusters[active[i] as usize]
                     .bv
                     .merge(&clusters[active[j] as usize].bv);
-                let c = cost(&m, metric, unit);
+                let c = cost(&m, metric, scale);
                 // `<` keeps the first best pair: deterministic ties.
                 if c < best {
                     (best, bi, bj) = (c, i, j);
@@ -390,7 +391,7 @@ fn ploc<B: BoundingVolume, P: Primitive>(
     metric: MergeMetric,
 ) -> u32 {
     let n = prims.len();
-    let unit = scene_unit(prims);
+    let scale = scene_scale(prims);
     // Morton order of the primitive centres (ties broken by index).
     let mut centres = Aabb::EMPTY;
     for p in prims {
@@ -427,7 +428,7 @@ fn ploc<B: BoundingVolume, P: Primitive>(
                 if j == i {
                     continue;
                 }
-                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, unit);
+                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, scale);
                 // Ties go to the nearer index on the curve, then the lower one.
                 if c < best || (c == best && tie_prefers(i, j, partner)) {
                     (best, partner) = (c, j);

@@ -203,12 +203,12 @@ impl BoundingVolume for Aabb {
     fn surface_area(&self) -> f32 {
         2.0 * self.half_area()
     }
-    fn surface_area_in(&self, unit: f32) -> f32 {
-        let e = (self.extent() / unit).max(Vec3::ZERO);
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        let e = (self.extent() * scale).max(Vec3::ZERO);
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
-    fn volume_in(&self, unit: f32) -> f32 {
-        let e = (self.extent() / unit).max(Vec3::ZERO);
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        let e = (self.extent() * scale).max(Vec3::ZERO);
         e.x * e.y * e.z
     }
     fn aabb(&self) -> Aabb {

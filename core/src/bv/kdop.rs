@@ -200,12 +200,12 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
         BoundingVolume::surface_area(&self.aabb())
     }
 
-    fn surface_area_in(&self, unit: f32) -> f32 {
-        self.aabb().surface_area_in(unit)
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        self.aabb().surface_area_scaled(scale)
     }
 
-    fn volume_in(&self, unit: f32) -> f32 {
-        self.aabb().volume_in(unit)
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        self.aabb().volume_scaled(scale)
     }
 
     fn aabb(&self) -> Aabb {

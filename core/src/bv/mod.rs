@@ -187,18 +187,19 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     fn volume(&self) -> f32;
     /// Surface area (the k-DOP reports an upper bound, see its docs).
     fn surface_area(&self) -> f32;
-    /// [`surface_area`](Self::surface_area) with `unit` as the unit of
-    /// length. Bottom-up builders compare merges in the scene's own unit, so
-    /// that a scene 1e30 wide does not overflow `f32` (its areas would be
-    /// 1e60) and every candidate keeps its own cost. Implementations scale
-    /// the lengths before multiplying them; the default divides afterwards.
-    fn surface_area_in(&self, unit: f32) -> f32 {
-        self.surface_area() / unit / unit
+    /// [`surface_area`](Self::surface_area) of the volume with every length
+    /// multiplied by `scale`. Bottom-up builders compare merges with the
+    /// scene's size as the unit (`scale = 1 / size`), so that a scene 1e30
+    /// wide does not overflow `f32` (its areas would be 1e60) and every
+    /// candidate keeps its own cost. Implementations scale the lengths
+    /// before multiplying them; the default scales the area afterwards.
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        self.surface_area() * scale * scale
     }
-    /// [`volume`](Self::volume) with `unit` as the unit of length (see
-    /// [`surface_area_in`](Self::surface_area_in)).
-    fn volume_in(&self, unit: f32) -> f32 {
-        self.volume() / unit / unit / unit
+    /// [`volume`](Self::volume) with every length multiplied by `scale` (see
+    /// [`surface_area_scaled`](Self::surface_area_scaled)).
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        self.volume() * scale * scale * scale
     }
     /// The size measure the "descend the larger volume" rule compares.
     fn size(&self) -> f32 {

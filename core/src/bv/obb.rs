@@ -312,13 +312,13 @@ impl BoundingVolume for Obb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
-    fn surface_area_in(&self, unit: f32) -> f32 {
-        let e = self.half_extents.max(Vec3::ZERO) * 2.0 / unit;
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * (2.0 * scale);
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
-    fn volume_in(&self, unit: f32) -> f32 {
-        let e = self.half_extents.max(Vec3::ZERO) * 2.0 / unit;
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        let e = self.half_extents.max(Vec3::ZERO) * (2.0 * scale);
         e.x * e.y * e.z
     }
 

@@ -476,13 +476,13 @@ impl BoundingVolume for Sphere {
         4.0 * core::f32::consts::PI * r * r
     }
 
-    fn surface_area_in(&self, unit: f32) -> f32 {
-        let r = self.radius.max(0.0) / unit;
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        let r = self.radius.max(0.0) * scale;
         4.0 * core::f32::consts::PI * r * r
     }
 
-    fn volume_in(&self, unit: f32) -> f32 {
-        let r = self.radius.max(0.0) / unit;
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        let r = self.radius.max(0.0) * scale;
         4.0 / 3.0 * core::f32::consts::PI * r * r * r
     }
 
