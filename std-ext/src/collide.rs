@@ -5,9 +5,9 @@
 //! tree: B is not rebuilt, it is queried in A's frame through a rigid motion
 //! (each moved node volume counts as an update, `Nu`).
 
+use crate::builders::Builder;
 use crate::tour::reference_pairs;
-use crate::{median_time, scene, OwnedBvh};
-use bvhkit::build::PRESETS;
+use crate::{median_time, scene};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::{
     Aabb, BoundingVolume, Counts, Descent, Dop14, Dop18, Dop26, Frame, Intersects, Obb,
@@ -39,7 +39,7 @@ pub enum Mode {
 pub struct CollideOptions {
     /// One of [`VOLUMES`].
     pub volume: String,
-    /// A builder preset name (see `bvhkit::build::PRESETS`).
+    /// A builder name (see [`crate::builders::names`]).
     pub builder: String,
     /// One of [`TRAVERSALS`].
     pub traversal: String,
@@ -169,20 +169,19 @@ fn run_with<B: BoundingVolume>(
     input: &Input,
     opts: &CollideOptions,
 ) -> Result<CollideReport, String> {
-    let builder = PRESETS
-        .iter()
-        .find(|p| p.name == opts.builder)
-        .map(|p| p.builder)
-        .ok_or_else(|| {
-            let names: Vec<_> = PRESETS.iter().map(|p| p.name).collect();
-            format!("unknown builder '{}' (one of {names:?})", opts.builder)
-        })?;
+    let builder = Builder::by_name(&opts.builder).ok_or_else(|| {
+        format!(
+            "unknown builder '{}' (one of {:?})",
+            opts.builder,
+            crate::builders::names()
+        )
+    })?;
     let trav = traversal(&opts.traversal, opts.descent)?;
     let err = |e: bvhkit::Error| e.to_string();
     match input {
         Input::Default { subdivisions } => {
             let mesh = scene::rock(*subdivisions, 1);
-            let (build, tree) = median_time(opts.runs, || OwnedBvh::<B>::build(&builder, &mesh));
+            let (build, tree) = median_time(opts.runs, || builder.build::<B>(&mesh));
             let tree = tree.map_err(err)?;
             let t = tree.view();
             let name =
@@ -201,8 +200,8 @@ fn run_with<B: BoundingVolume>(
         }
         Input::Meshes { name, a, b } => {
             let start = Instant::now();
-            let ta = OwnedBvh::<B>::build(&builder, a).map_err(err)?;
-            let tb = OwnedBvh::<B>::build(&builder, b).map_err(err)?;
+            let ta = builder.build::<B>(a).map_err(err)?;
+            let tb = builder.build::<B>(b).map_err(err)?;
             let build = start.elapsed().as_secs_f64() * 1e3;
             measure(name, &ta.view(), a, &tb.view(), b, Same, trav, opts, build)
         }

@@ -6,6 +6,7 @@
 //! `Vec`s, files and clocks live.
 
 pub mod advisor;
+pub mod builders;
 pub mod collide;
 pub mod cost;
 pub mod layouts;

@@ -1,12 +1,12 @@
 //! `bvhkit stats`: one tree over one mesh, measured, with the memory each
 //! representation would take.
 
-use crate::{collide::VOLUMES, median_time, OwnedBvh};
-use bvhkit::build::PRESETS;
+use crate::builders::Builder;
+use crate::{collide::VOLUMES, median_time};
 use bvhkit::layout::{
     Implicit, PreNode, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
 };
-use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, TopDown, Triangle};
+use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, Triangle};
 use serde::Serialize;
 use std::mem::size_of;
 
@@ -88,15 +88,18 @@ fn run_with<B: BoundingVolume>(
     mesh: &[Triangle],
     opts: &StatsOptions,
 ) -> Result<StatsReport, String> {
-    let mut builder: TopDown = PRESETS
-        .iter()
-        .find(|p| p.name == opts.builder)
-        .map(|p| p.builder)
+    let mut builder = Builder::by_name(&opts.builder)
         .ok_or_else(|| format!("unknown builder '{}'", opts.builder))?;
     if let Some(k) = opts.leaf_size {
-        builder = builder.with_max_leaf_size(k);
+        match &mut builder {
+            Builder::TopDown(t) => *t = t.with_max_leaf_size(k),
+            _ => return Err(format!(
+                "--leaf-size applies to the top-down builders; '{}' keeps one triangle per leaf",
+                opts.builder
+            )),
+        }
     }
-    let (t, tree) = median_time(opts.runs, || OwnedBvh::<B>::build(&builder, mesh));
+    let (t, tree) = median_time(opts.runs, || builder.build::<B>(mesh));
     let tree = tree.map_err(|e| e.to_string())?;
     let v = tree.view();
     let s = v.stats();

@@ -1,8 +1,7 @@
 //! `bvhkit tour`: every top-down strategy and every bounding volume on the
 //! default scene, each checked against brute force.
 
-use crate::{median_time, scene, OwnedBvh};
-use bvhkit::build::PRESETS;
+use crate::{median_time, scene};
 use bvhkit::build::{DynamicConfig, InsertOrder, Insertion, SiblingSearch};
 use bvhkit::{
     overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Intersects, Obb,
@@ -116,30 +115,7 @@ fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
-/// A way to build a tree (top-down or bottom-up).
-#[derive(Clone, Copy, Debug)]
-pub enum Builder {
-    /// A top-down configuration.
-    TopDown(TopDown),
-    /// A bottom-up configuration.
-    BottomUp(bvhkit::build::BottomUp),
-    /// Insertion, one primitive at a time.
-    Insertion(bvhkit::build::Insertion),
-}
-
-impl Builder {
-    /// Builds into owned storage.
-    pub fn build<B: BoundingVolume>(
-        &self,
-        prims: &[Triangle],
-    ) -> Result<OwnedBvh<B>, bvhkit::Error> {
-        match self {
-            Builder::TopDown(t) => OwnedBvh::build(t, prims),
-            Builder::BottomUp(b) => OwnedBvh::build_bottom_up(b, prims),
-            Builder::Insertion(i) => OwnedBvh::build_by_insertion(i, prims),
-        }
-    }
-}
+pub use crate::builders::Builder;
 
 fn measure<B: BoundingVolume>(
     name: &str,
@@ -209,35 +185,18 @@ impl Default for TourOptions {
 
 /// The builders compared on every generated scene kind.
 fn scene_builders() -> [(&'static str, Builder); 6] {
-    let insertion = |search, order| {
-        Builder::Insertion(Insertion {
-            config: DynamicConfig {
-                search,
-                ..DynamicConfig::default()
-            },
-            order,
-        })
-    };
     [
-        ("sah", Builder::TopDown(TopDown::sah())),
-        ("median", Builder::TopDown(TopDown::median())),
-        (
-            "ploc-r16",
-            Builder::BottomUp(bvhkit::build::BottomUp::default()),
-        ),
-        (
-            "insert-bnb",
-            insertion(SiblingSearch::BranchAndBound, InsertOrder::Shuffled(0x5eed)),
-        ),
-        (
-            "insert-descent",
-            insertion(SiblingSearch::Descent, InsertOrder::Shuffled(0x5eed)),
-        ),
-        (
-            "insert-bnb-sorted",
-            insertion(SiblingSearch::BranchAndBound, InsertOrder::Sorted),
-        ),
+        "sah",
+        "median",
+        "ploc-r16",
+        "insert-bnb",
+        "insert-descent",
+        "insert-bnb-sorted",
     ]
+    .map(|name| match Builder::by_name(name) {
+        Some(b) => (name, b),
+        None => unreachable!("{name} is in the builder catalogue"),
+    })
 }
 
 type CostReport =
@@ -255,18 +214,12 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
     let reference = reference_pairs(&a, &b);
     let reference_ms = ms(t.elapsed());
     let mut strategies = Vec::new();
-    for p in PRESETS {
-        progress(p.name);
-        strategies.push(measure::<Aabb>(
-            p.name, &p.builder, &a, &b, &reference, opts.runs,
-        )?);
-    }
-    for (name, radius) in [("ploc-r16", 16), ("ploc-r4", 4)] {
+    // Every builder but the textbook exhaustive one (O(n^3): hours here).
+    for (name, _, builder) in crate::builders::catalogue() {
+        if name == "bottom-up-exhaustive" {
+            continue;
+        }
         progress(name);
-        let builder = Builder::BottomUp(bvhkit::build::BottomUp {
-            method: bvhkit::build::Method::Ploc { radius },
-            metric: bvhkit::build::MergeMetric::SurfaceArea,
-        });
         strategies.push(measure_with::<Aabb>(
             name, builder, &a, &b, &reference, opts.runs,
         )?);

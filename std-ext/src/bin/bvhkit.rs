@@ -1,6 +1,5 @@
 //! The `bvhkit` command-line tool.
 
-use bvhkit::build::PRESETS;
 use bvhkit::Descent;
 use bvhkit_std::collide::{self, CollideOptions, Input, Mode, TRAVERSALS, VOLUMES};
 use bvhkit_std::tour::{self, TourOptions};
@@ -71,8 +70,9 @@ enum Command {
         /// Bounding volume of the trees.
         #[arg(long, default_value = "aabb", value_parser = PossibleValuesParser::new(VOLUMES))]
         bv: String,
-        /// Top-down builder preset.
-        #[arg(long, default_value = "sah", value_parser = PossibleValuesParser::new(PRESETS.map(|p| p.name)))]
+        /// Builder: a top-down preset, a bottom-up builder (ploc-r16, ploc-r4,
+        /// ploc-r1, bottom-up-exhaustive) or an insertion builder (insert-*).
+        #[arg(long, default_value = "sah", value_parser = PossibleValuesParser::new(bvhkit_std::builders::names()))]
         builder: String,
         /// Icosphere subdivisions of the built-in rock (6 = 81 920 triangles).
         #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(1..=7))]
@@ -93,8 +93,9 @@ enum Command {
     Stats {
         /// Mesh file (.obj, .stl, .ply or .off); default: the built-in rock.
         mesh: Option<PathBuf>,
-        /// Top-down builder preset.
-        #[arg(long, default_value = "sah", value_parser = PossibleValuesParser::new(PRESETS.map(|p| p.name)))]
+        /// Builder: a top-down preset, a bottom-up builder (ploc-r16, ploc-r4,
+        /// ploc-r1, bottom-up-exhaustive) or an insertion builder (insert-*).
+        #[arg(long, default_value = "sah", value_parser = PossibleValuesParser::new(bvhkit_std::builders::names()))]
         builder: String,
         /// Bounding volume of the tree.
         #[arg(long, default_value = "aabb", value_parser = PossibleValuesParser::new(VOLUMES))]
