@@ -93,10 +93,12 @@ fn run_with<B: BoundingVolume>(
     if let Some(k) = opts.leaf_size {
         match &mut builder {
             Builder::TopDown(t) => *t = t.with_max_leaf_size(k),
-            _ => return Err(format!(
+            _ => {
+                return Err(format!(
                 "--leaf-size applies to the top-down builders; '{}' keeps one triangle per leaf",
                 opts.builder
-            )),
+            ))
+            }
         }
     }
     let (t, tree) = median_time(opts.runs, || builder.build::<B>(mesh));
