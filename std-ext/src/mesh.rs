@@ -2,7 +2,7 @@
 //!
 //! | format | how |
 //! |---|---|
-//! | Wavefront OBJ | the `tobj` crate |
+//! | Wavefront OBJ | the `tobj` crate, after a line-numbered check of every `v` and `f` line (faces of fewer than 3 vertices, bad or out-of-range indices, negative indices counted back) |
 //! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count |
 //! | PLY, ASCII and binary | the `ply-rs` crate |
 //! | OFF | by hand (a small text format no maintained crate reads) |
@@ -305,7 +305,67 @@ fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     Ok(out)
 }
 
+/// Checks the geometry statements of an OBJ file line by line before `tobj`
+/// reads it, so that an error names its line (tobj's errors do not) and a
+/// face of fewer than three vertices is refused (tobj would make it a
+/// triangle). `v` needs three finite numbers; each `f` vertex
+/// (`i`, `i/t`, `i//n`, `i/t/n`) needs an index that exists, counting
+/// negative indices back from the last vertex read. Other statements are
+/// left to tobj.
+fn check_obj(text: &str, fail: Fail<'_>) -> Result<(), MeshError> {
+    let mut vertices = 0usize;
+    for (n, line) in text.lines().enumerate() {
+        let at = |what: String| fail(format!("line {}: {what}", n + 1));
+        // Comments are whole lines; tobj reads no comment after a statement.
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let xyz: Vec<&str> = words.take(3).collect();
+                if xyz.len() < 3 {
+                    return Err(at(format!(
+                        "a vertex needs x, y and z, found {}",
+                        xyz.len()
+                    )));
+                }
+                for w in xyz {
+                    match w.parse::<f32>() {
+                        Ok(x) if x.is_finite() => {}
+                        Ok(_) => return Err(at(format!("non-finite coordinate '{w}'"))),
+                        Err(_) => return Err(at(format!("'{w}' is not a number"))),
+                    }
+                }
+                vertices += 1;
+            }
+            Some("f") => {
+                let corners: Vec<&str> = words.collect();
+                if corners.len() < 3 {
+                    return Err(at(format!(
+                        "a face needs at least 3 vertices, found {}",
+                        corners.len()
+                    )));
+                }
+                for c in corners {
+                    let index = c.split('/').next().unwrap_or("");
+                    let i: i64 = index
+                        .parse()
+                        .map_err(|_| at(format!("'{c}' is not a vertex index")))?;
+                    let resolved = if i < 0 { vertices as i64 + i } else { i - 1 };
+                    if i == 0 || resolved < 0 || resolved >= vertices as i64 {
+                        return Err(at(format!(
+                            "vertex index {i} out of range ({vertices} vertices so far)"
+                        )));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 fn load_obj(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+    let text = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
+    check_obj(&String::from_utf8_lossy(&text), fail)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -356,6 +416,18 @@ mod tests {
         let p = dir.join(name);
         std::fs::write(&p, text).unwrap();
         p
+    }
+
+    #[test]
+    fn obj_negative_indices_and_slashed_faces_load() {
+        let p = write(
+            "slashes.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n\
+             f 1/1/1 2/1/1 3/1/1\nf -4//1 -2//1 -1//1\ns off\ng part\n",
+        );
+        let tris = load(&p).unwrap();
+        assert_eq!(tris.len(), 2);
+        assert_eq!(tris[1].v[2], Vec3::new(0.0, 1.0, 0.0));
     }
 
     #[test]
@@ -471,6 +543,14 @@ mod tests {
                 "out of range",
             ),
             ("garbage.ply", b"not a ply at all".to_vec(), "PLY"),
+            ("two_vertex_face.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n".to_vec(), "line 4: a face needs at least 3 vertices, found 2"),
+            ("bad_obj_index.obj", b"v 0 0 0\nv 1 0 0\n# comment\nf 1 2 9\n".to_vec(), "line 4: vertex index 9 out of range"),
+            ("zero_index.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n".to_vec(), "line 4: vertex index 0"),
+            ("negative_too_far.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n".to_vec(), "line 4: vertex index -4"),
+            ("nan.obj", b"v 0 0 0\nv nan 0 0\n".to_vec(), "line 2: non-finite"),
+            ("word.obj", b"v 0 zero 0\n".to_vec(), "line 1: 'zero' is not a number"),
+            ("short_v.obj", b"v 0 0\n".to_vec(), "line 1: a vertex needs x, y and z"),
+            ("inline_comment.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # tail\n".to_vec(), "line 4: '#' is not a vertex index"),
         ] {
             let p = write_bytes(name, &bytes);
             let e = load(&p).expect_err(name).to_string();
