@@ -4,8 +4,8 @@
 //! |---|---|
 //! | Wavefront OBJ | the `tobj` crate, after a line-numbered check of every `v` and `f` line (faces of fewer than 3 vertices, bad or out-of-range indices, negative indices counted back) |
 //! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count |
-//! | PLY, ASCII and binary | the `ply-rs` crate |
-//! | OFF | by hand (a small text format no maintained crate reads) |
+//! | PLY, ASCII and binary | the `ply-rs` crate; its errors are reduced to one line (the line, or the byte where binary data ends) |
+//! | OFF, with the `[ST][C][N]OFF` variants (colours, normals, texture coordinates; per-face colours) | by hand (a small text format no maintained crate reads) |
 //!
 //! Polygons are triangulated as fans. Every error names the file (and the
 //! line, where one is known); indices are checked against the vertex count,
@@ -187,14 +187,45 @@ fn load_stl(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     Ok(out)
 }
 
+/// A one-line reason for a ply-rs error, whose text carries the parser's
+/// debug output ("Line 12: Couln't read element line.\n\tString: '...'\n\t
+/// Error: Custom { .. }"): the line and the text found, or for binary data
+/// the byte where it ended.
+fn ply_error(text: &str, size: u64) -> String {
+    let first = text.lines().next().unwrap_or("").trim();
+    if let Some(rest) = first.strip_prefix("Line ") {
+        let n = rest.split(':').next().unwrap_or("?");
+        let found = text
+            .split("String: '")
+            .nth(1)
+            .and_then(|s| s.split('\'').next())
+            .map(str::trim)
+            .unwrap_or("");
+        return if !first.contains("element line") {
+            format!("not a PLY file, or a malformed header: line {n}: '{found}'")
+        } else if found.is_empty() {
+            format!("line {n}: the file ends before every element the header announces")
+        } else {
+            format!("line {n}: '{found}' does not match the properties the header declares")
+        };
+    }
+    if first.contains("fill whole buffer") {
+        return format!(
+            "the binary data ends at byte {size}, before every element the header announces"
+        );
+    }
+    format!("not a readable PLY file: {first}")
+}
+
 fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     use ply_rs::ply::Property;
     let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
     let mut reader = std::io::BufReader::new(file);
     let parser = ply_rs::parser::Parser::<ply_rs::ply::DefaultElement>::new();
+    let size = std::fs::metadata(path).map_or(0, |m| m.len());
     let ply = parser
         .read_ply(&mut reader)
-        .map_err(|e| fail(format!("not a readable PLY file: {e}")))?;
+        .map_err(|e| fail(ply_error(&e.to_string(), size)))?;
     let scalar = |p: Option<&Property>| -> Option<f64> {
         Some(match *p? {
             Property::Float(x) => x as f64,
@@ -231,54 +262,72 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
         };
         let poly: Vec<usize> = poly
             .iter()
-            .map(|&i| usize::try_from(i).unwrap_or(usize::MAX))
-            .collect();
+            .map(|&i| {
+                usize::try_from(i)
+                    .map_err(|_| fail(format!("face {k}: vertex index {i} is negative")))
+            })
+            .collect::<Result<_, _>>()?;
         fan(&poly, &vertices, &mut out, fail, &|| format!("face {k}: "))?;
     }
     Ok(out)
 }
 
+/// OFF and its variants `[ST][C][N]OFF`: texture coordinates, normals and
+/// colours follow a vertex's `x y z` on its line, and a face's colour follows
+/// its indices; both are read past. The homogeneous `4OFF` and the
+/// n-dimensional `nOFF` are refused. One vertex or face per line, as every
+/// writer does; the header's counts may share the keyword's line.
 fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
-    // Numbers with the line each came from; comments (#) dropped.
-    let mut tokens = text.lines().enumerate().flat_map(|(n, line)| {
-        let line = line.split('#').next().unwrap_or("");
-        line.split_whitespace().map(move |t| (n + 1, t))
+    // Non-empty lines with their numbers; comments (#) dropped.
+    let mut lines = text.lines().enumerate().filter_map(|(n, line)| {
+        let line = line.split('#').next().unwrap_or("").trim();
+        (!line.is_empty()).then_some((n + 1, line))
     });
-    let line_of_end = text.lines().count();
-    match tokens.next() {
-        Some((_, "OFF")) => {}
-        Some((n, t)) if t.ends_with("OFF") => {
-            return Err(fail(format!(
-                "line {n}: '{t}' variant not supported (plain OFF only)"
-            )))
-        }
-        _ => return Err(fail("line 1: not an OFF file (no 'OFF' header)".into())),
-    }
-    let mut number = |what: &str| -> Result<(usize, String), MeshError> {
-        tokens
+    let line_of_end = text.lines().count().max(1);
+    let mut next_line = |what: &str| {
+        lines
             .next()
-            .map(|(n, t)| (n, t.to_string()))
             .ok_or_else(|| fail(format!("line {line_of_end}: file ends before {what}")))
     };
-    fn count(
-        token: Result<(usize, String), MeshError>,
-        what: &str,
-        fail: Fail<'_>,
-    ) -> Result<usize, MeshError> {
-        let (n, t) = token?;
-        t.parse()
-            .map_err(|_| fail(format!("line {n}: {what} '{t}' is not a count")))
+    let not_off = || fail("line 1: not an OFF file (no 'OFF' header)".into());
+    let (n0, header) = next_line("the 'OFF' header").map_err(|_| not_off())?;
+    let mut words = header.split_whitespace();
+    let keyword = words.next().unwrap_or("");
+    let prefix = keyword.strip_suffix("OFF").ok_or_else(not_off)?;
+    if prefix.contains('4') || prefix.contains('n') {
+        return Err(fail(format!(
+            "line {n0}: '{keyword}' has 4 or n coordinates per vertex; bvhkit reads 3D OFF files"
+        )));
     }
-    let nv = count(number("the vertex count"), "the vertex count", fail)?;
-    let nf = count(number("the face count"), "the face count", fail)?;
-    let _edges = count(number("the edge count"), "the edge count", fail)?;
+    if !prefix.chars().all(|c| "STCN".contains(c)) {
+        return Err(not_off());
+    }
+    let rest: Vec<&str> = words.collect();
+    let (nc, counts) = if rest.is_empty() {
+        let (n, line) = next_line("the vertex and face counts")?;
+        (n, line.split_whitespace().collect())
+    } else {
+        (n0, rest)
+    };
+    let count = |i: usize, what: &str| -> Result<usize, MeshError> {
+        let t = counts
+            .get(i)
+            .ok_or_else(|| fail(format!("line {nc}: no {what}")))?;
+        t.parse()
+            .map_err(|_| fail(format!("line {nc}: {what} '{t}' is not a count")))
+    };
+    let (nv, nf) = (count(0, "vertex count")?, count(1, "face count")?);
     // Grown as data arrives, never reserved from the header's claim.
     let mut vertices = Vec::new();
     for k in 0..nv {
+        let (n, line) = next_line("all vertices")?;
         let mut c = [0f32; 3];
+        let mut words = line.split_whitespace();
         for x in &mut c {
-            let (n, t) = number("all vertices")?;
+            let t = words
+                .next()
+                .ok_or_else(|| fail(format!("line {n}: a vertex needs x, y and z")))?;
             *x = t
                 .parse()
                 .map_err(|_| fail(format!("line {n}: coordinate '{t}' is not a number")))?;
@@ -287,19 +336,32 @@ fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     }
     let mut out = Vec::new();
     for k in 0..nf {
-        let m = count(number("all faces"), "a face's vertex count", fail)?;
-        let mut poly = Vec::new();
-        let mut line = 0;
-        for _ in 0..m {
-            let (n, t) = number("all face indices")?;
-            line = n;
-            poly.push(
+        let (n, line) = next_line("all faces")?;
+        let mut words = line.split_whitespace();
+        let m: usize = match words.next().map(str::parse) {
+            Some(Ok(m)) => m,
+            _ => {
+                return Err(fail(format!(
+                    "line {n}: a face starts with its vertex count"
+                )))
+            }
+        };
+        let poly = words
+            .by_ref()
+            .take(m)
+            .map(|t| {
                 t.parse::<usize>()
-                    .map_err(|_| fail(format!("line {n}: index '{t}' is not an index")))?,
-            );
+                    .map_err(|_| fail(format!("line {n}: index '{t}' is not an index")))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        if poly.len() < m {
+            return Err(fail(format!(
+                "line {n}: the face announces {m} vertices but lists {}",
+                poly.len()
+            )));
         }
         fan(&poly, &vertices, &mut out, fail, &|| {
-            format!("line {line} (face {k}): ")
+            format!("line {n} (face {k}): ")
         })?;
     }
     Ok(out)
@@ -419,6 +481,22 @@ mod tests {
     }
 
     #[test]
+    fn off_variants_load() {
+        // Per-vertex colours (COFF), normals (NOFF), both with texture
+        // coordinates (STCNOFF), per-face colours, counts on the header line.
+        for (name, text) in [
+            ("plain.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            ("colours.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2\n"),
+            ("normals.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n"),
+            ("all.off", "STCNOFF 3 1 0\n0 0 0 0 0 1 1 1 1 0 0\n1 0 0 0 0 1 1 1 1 1 0\n0 1 0 0 0 1 1 1 1 0 1\n3 0 1 2 0.5 0.5 0.5\n"),
+            ("face_colour.off", "OFF\n# a comment\n3 1 0\n\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 128 0\n"),
+        ] {
+            let tris = load(&write(name, text)).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(tris, [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)], "{name}");
+        }
+    }
+
+    #[test]
     fn obj_negative_indices_and_slashed_faces_load() {
         let p = write(
             "slashes.obj",
@@ -532,17 +610,34 @@ mod tests {
             ("inf.off", b"OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "non-finite"),
             ("no_header.off", b"3 1 0\n".to_vec(), "not an OFF file"),
             ("two_gon.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n".to_vec(), "2 vertices"),
+            ("short_face.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n".to_vec(), "line 6: the face announces 3 vertices but lists 2"),
+            ("four_d.off", b"4OFF\n1 0 0\n0 0 0 1\n".to_vec(), "line 1: '4OFF'"),
             (
                 "huge_ply.ply",
                 b"ply\nformat ascii 1.0\nelement vertex 999999999999\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec(),
-                "PLY",
+                "the file ends before every element",
             ),
             (
                 "bad_ply_index.ply",
                 b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -5\n".to_vec(),
-                "out of range",
+                "face 0: vertex index -5 is negative",
             ),
             ("garbage.ply", b"not a ply at all".to_vec(), "PLY"),
+            (
+                "truncated.ply",
+                b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n".to_vec(),
+                "line 10: the file ends before every element",
+            ),
+            (
+                "word.ply",
+                b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 zero 0\n".to_vec(),
+                "line 8: '0 zero 0' does not match",
+            ),
+            (
+                "truncated_binary.ply",
+                b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x00\x00\x00\x00".to_vec(),
+                "binary data ends at byte",
+            ),
             ("two_vertex_face.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n".to_vec(), "line 4: a face needs at least 3 vertices, found 2"),
             ("bad_obj_index.obj", b"v 0 0 0\nv 1 0 0\n# comment\nf 1 2 9\n".to_vec(), "line 4: vertex index 9 out of range"),
             ("zero_index.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n".to_vec(), "line 4: vertex index 0"),
@@ -555,6 +650,8 @@ mod tests {
             let p = write_bytes(name, &bytes);
             let e = load(&p).expect_err(name).to_string();
             assert!(e.contains(name) && e.contains(says), "{name}: {e}");
+            // One line, no parser debug output.
+            assert!(!e.contains('\n') && !e.contains("Custom {"), "{name}: {e}");
         }
     }
 
