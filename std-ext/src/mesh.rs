@@ -112,12 +112,18 @@ impl Placement {
     }
 }
 
-/// A vertex, checked to be finite.
+/// A vertex, checked to be finite and within the builders' range
+/// ([`bvhkit::MAX_COORDINATE`]), so that the error names the file.
 fn finite(v: Vec3, which: usize, fail: Fail<'_>) -> Result<Vec3, MeshError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
+    if !v.is_finite() {
         Err(fail(format!("vertex {which} has a non-finite coordinate")))
+    } else if v.abs().max_element() > bvhkit::MAX_COORDINATE {
+        Err(fail(format!(
+            "vertex {which} has a coordinate beyond {:e}, the largest bvhkit accepts",
+            bvhkit::MAX_COORDINATE
+        )))
+    } else {
+        Ok(v)
     }
 }
 
@@ -391,7 +397,13 @@ fn check_obj(text: &str, fail: Fail<'_>) -> Result<(), MeshError> {
                 }
                 for w in xyz {
                     match w.parse::<f32>() {
-                        Ok(x) if x.is_finite() => {}
+                        Ok(x) if x.abs() <= bvhkit::MAX_COORDINATE => {}
+                        Ok(x) if x.is_finite() => {
+                            return Err(at(format!(
+                                "coordinate {w} is beyond {:e}, the largest bvhkit accepts",
+                                bvhkit::MAX_COORDINATE
+                            )))
+                        }
                         Ok(_) => return Err(at(format!("non-finite coordinate '{w}'"))),
                         Err(_) => return Err(at(format!("'{w}' is not a number"))),
                     }
@@ -645,6 +657,8 @@ mod tests {
             ("nan.obj", b"v 0 0 0\nv nan 0 0\n".to_vec(), "line 2: non-finite"),
             ("word.obj", b"v 0 zero 0\n".to_vec(), "line 1: 'zero' is not a number"),
             ("short_v.obj", b"v 0 0\n".to_vec(), "line 1: a vertex needs x, y and z"),
+            ("far.obj", b"v 0 0 0\nv 1e33 0 0\n".to_vec(), "line 2: coordinate 1e33 is beyond 1e32"),
+            ("far.off", b"OFF\n3 1 0\n0 0 0\n-2e32 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "vertex 1 has a coordinate beyond 1e32"),
             ("inline_comment.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # tail\n".to_vec(), "line 4: '#' is not a vertex index"),
         ] {
             let p = write_bytes(name, &bytes);
