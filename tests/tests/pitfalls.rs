@@ -5,7 +5,7 @@ use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, overlapping_pairs, Aabb, BoundingVolume, Bvh, Descent, Dop14, Error, Exact, Node,
     Obb, OnFailure, Order, PairTraversal, Pairs, Partition, Ray, RayOrder, Rigid, Sphere,
-    SplitPoint, TopDown, Triangle,
+    SplitPoint, Stop, TopDown, Triangle,
 };
 use bvhkit_tests::{build, open};
 
@@ -307,6 +307,44 @@ fn identical_centroids_terminate() {
             }
         }
     }
+}
+
+/// Criteria that split off a few primitives at a time (here: exponentially
+/// spaced input; on real meshes, minimum overlap and maximum separation)
+/// used to spend all 64 levels and end in leaves far over the limit,
+/// silently. Once the levels left are only just enough, the builder halves
+/// at the object median, so every leaf keeps to the stated size.
+#[test]
+fn leaves_keep_their_size_when_a_criterion_peels_primitives() {
+    let tris: Vec<Triangle> = (0..5000)
+        .map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3))
+        .collect();
+    for p in bvhkit::build::PRESETS {
+        for leaf in [1, 4] {
+            let cfg = p.builder.with_max_leaf_size(leaf);
+            let (nodes, idx, depth) = build::<Aabb, _>(&cfg, &tris).unwrap();
+            let s = open(&nodes, &idx, &tris).stats();
+            assert!(depth <= bvhkit::MAX_DEPTH, "{}", p.name);
+            assert!(
+                s.max_leaf_size <= leaf as usize,
+                "{} (leaf {leaf}): a leaf of {} at depth {}",
+                p.name,
+                s.max_leaf_size,
+                s.max_depth
+            );
+        }
+    }
+    // A depth cap the caller chose still stops the build (leaves grow).
+    let capped = TopDown {
+        stop: Stop {
+            max_depth: 3,
+            ..Stop::default()
+        },
+        ..TopDown::sah()
+    };
+    let (nodes, idx, depth) = build::<Aabb, _>(&capped, &tris).unwrap();
+    assert!(depth <= 3);
+    assert_eq!(open(&nodes, &idx, &tris).primitive_count(), tris.len());
 }
 
 /// Sorted, collinear input cannot make the tree deeper than the traversal

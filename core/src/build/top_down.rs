@@ -539,6 +539,22 @@ impl TopDown {
         bv: &B,
     ) -> Option<Halves> {
         let norm = Norm::new(&task.bounds);
+        // Depth budget: a node of n primitives needs log2(n / max leaf)
+        // more levels even when halved exactly. A criterion that splits off
+        // a few primitives at a time (minimum overlap, maximum separation on
+        // a curved surface) would spend the levels left and end in a leaf
+        // far over the limit at `max_depth`; once the levels left are only
+        // just enough, the node is halved at its object median instead.
+        let leaves = range
+            .len()
+            .div_ceil(self.stop.max_leaf_size.max(1) as usize);
+        let needed = usize::BITS - (leaves.max(1) - 1).leading_zeros(); // ceil(log2)
+        let left = self.stop.max_depth.saturating_sub(task.depth);
+        if needed >= left && leaves > 1 {
+            let dir = longest_direction(task);
+            let mid = range.len() / 2;
+            return Some(apply(src, range, Plan::Order { dir, mid }));
+        }
         let mut attempt = |axis: AxisChoice, split: SplitPoint, partition: Partition| {
             let plan = plan(src, range, scratch, task, bv, axis, split, partition, &norm)?;
             let h = apply(src, range, plan);
