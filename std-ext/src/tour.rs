@@ -2,7 +2,6 @@
 //! default scene, each checked against brute force.
 
 use crate::{median_time, scene};
-use bvhkit::build::{DynamicConfig, InsertOrder, Insertion, SiblingSearch};
 use bvhkit::{
     overlapping_pairs, Aabb, BoundingVolume, Descent, Dop14, Dop18, Dop26, Intersects, Obb,
     Primitive, Sphere, TopDown, Transform, Triangle,
@@ -165,6 +164,26 @@ pub(crate) fn measure_with<B: BoundingVolume>(
     })
 }
 
+/// One row per builder of the catalogue but the textbook exhaustive one
+/// (O(n^3): hours on the tour's scene), each measured once.
+fn builder_rows(
+    a: &[Triangle],
+    b: &[Triangle],
+    reference: &[(u32, u32)],
+    runs: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<Vec<Row>, bvhkit::Error> {
+    let mut rows = Vec::new();
+    for (name, _, builder) in crate::builders::catalogue() {
+        if name == "bottom-up-exhaustive" {
+            continue;
+        }
+        progress(name);
+        rows.push(measure_with::<Aabb>(name, builder, a, b, reference, runs)?);
+    }
+    Ok(rows)
+}
+
 /// Options of the tour.
 #[derive(Clone, Copy, Debug)]
 pub struct TourOptions {
@@ -213,56 +232,7 @@ pub fn run(opts: TourOptions, mut progress: impl FnMut(&str)) -> Result<TourRepo
     let t = Instant::now();
     let reference = reference_pairs(&a, &b);
     let reference_ms = ms(t.elapsed());
-    let mut strategies = Vec::new();
-    // Every builder but the textbook exhaustive one (O(n^3): hours here).
-    for (name, _, builder) in crate::builders::catalogue() {
-        if name == "bottom-up-exhaustive" {
-            continue;
-        }
-        progress(name);
-        strategies.push(measure_with::<Aabb>(
-            name, builder, &a, &b, &reference, opts.runs,
-        )?);
-    }
-    for (name, search, order) in [
-        (
-            "insert-bnb",
-            SiblingSearch::BranchAndBound,
-            InsertOrder::Shuffled(0x5eed),
-        ),
-        (
-            "insert-descent",
-            SiblingSearch::Descent,
-            InsertOrder::Shuffled(0x5eed),
-        ),
-        (
-            "insert-bnb-mesh",
-            SiblingSearch::BranchAndBound,
-            InsertOrder::Given,
-        ),
-        (
-            "insert-bnb-sorted",
-            SiblingSearch::BranchAndBound,
-            InsertOrder::Sorted,
-        ),
-        (
-            "insert-dsc-sorted",
-            SiblingSearch::Descent,
-            InsertOrder::Sorted,
-        ),
-    ] {
-        progress(name);
-        let builder = Builder::Insertion(Insertion {
-            config: DynamicConfig {
-                search,
-                ..DynamicConfig::default()
-            },
-            order,
-        });
-        strategies.push(measure_with::<Aabb>(
-            name, builder, &a, &b, &reference, opts.runs,
-        )?);
-    }
+    let strategies = builder_rows(&a, &b, &reference, opts.runs, &mut progress)?;
     let sah = TopDown::sah();
     let mut volumes = Vec::new();
     progress("volumes");
@@ -491,4 +461,23 @@ pub fn render(r: &TourReport) -> String {
         r.verified, r.queries
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builder_gets_one_verified_row() {
+        let (a, b) = scene::rock_pair(1);
+        let reference = reference_pairs(&a, &b);
+        let rows = builder_rows(&a, &b, &reference, 1, &mut |_| {}).unwrap();
+        let names: Vec<&str> = rows.iter().map(|r| r.strategy.as_str()).collect();
+        let want: Vec<&str> = crate::builders::names()
+            .into_iter()
+            .filter(|n| *n != "bottom-up-exhaustive")
+            .collect();
+        assert_eq!(names, want);
+        assert!(rows.iter().all(|r| r.matches), "{names:?}");
+    }
 }
