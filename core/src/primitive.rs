@@ -96,6 +96,38 @@ impl Primitive for Triangle {
     }
 }
 
+/// Three corners, as many mesh crates hand triangles out: bounds like a
+/// [`Triangle`] (the exact triangle test needs the `Triangle` type itself).
+///
+/// ```
+/// use bvhkit::{Aabb, Node, Primitive, TopDown};
+/// use glam::Vec3;
+/// let tris: Vec<[Vec3; 3]> = (0..8)
+///     .map(|i| {
+///         let o = Vec3::X * (2 * i) as f32;
+///         [o, o + Vec3::X, o + Vec3::Y]
+///     })
+///     .collect();
+/// assert_eq!(tris[1].bounds().min, Vec3::new(2.0, 0.0, 0.0));
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+/// let mut idx = vec![0u32; tris.len()];
+/// let tree = TopDown::default().build(&tris, &mut nodes, &mut idx)?;
+/// assert_eq!(tree.primitive_count(), 8);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+impl Primitive for [Vec3; 3] {
+    #[inline]
+    fn bounds(&self) -> Aabb {
+        Aabb::new(
+            self[0].min(self[1]).min(self[2]),
+            self[0].max(self[1]).max(self[2]),
+        )
+    }
+    fn is_finite(&self) -> bool {
+        self.iter().all(|p| p.is_finite())
+    }
+}
+
 impl Primitive for Vec3 {
     #[inline]
     fn bounds(&self) -> Aabb {
