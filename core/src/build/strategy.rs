@@ -93,7 +93,11 @@ pub struct Stop {
     /// A node whose volume (in the tree's volume type) is below this becomes a
     /// leaf; 0 disables the test.
     pub min_volume: f32,
-    /// A node at this depth becomes a leaf (at most [`MAX_DEPTH`]).
+    /// A node at this depth becomes a leaf (at most [`MAX_DEPTH`]). The
+    /// builder budgets for it: once the levels left are only just enough to
+    /// halve a node down to `max_leaf_size`, the node is halved at its object
+    /// median whatever the partition criterion, so leaves stay within
+    /// `max_leaf_size` unless `max_depth` itself is too small for the input.
     pub max_depth: u32,
 }
 

@@ -181,6 +181,18 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
 
     /// Whether the tree holds nothing (built from no primitives): every
     /// query on it answers with nothing.
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Bvh, Query, TopDown, Triangle};
+    /// use glam::Vec3;
+    /// let none: [Triangle; 0] = [];
+    /// // No primitives need no storage, and build the empty tree.
+    /// let tree: Bvh<Aabb> = TopDown::default().build(&none, &mut [], &mut [])?;
+    /// assert!(tree.is_empty() && tree.root().is_none());
+    /// let everywhere = Aabb::new(Vec3::splat(-1e6), Vec3::splat(1e6));
+    /// assert_eq!(tree.overlapping(&none, &everywhere, |_| ())?, 0);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
