@@ -156,6 +156,13 @@ impl LaneBin {
     fn aabb(&self) -> Aabb {
         Aabb::new(self.min.into(), self.max.into())
     }
+    #[inline(always)]
+    fn of(b: &Aabb) -> LaneBin {
+        LaneBin {
+            min: b.min.into(),
+            max: b.max.into(),
+        }
+    }
 }
 
 /// A chosen split, before the range is partitioned.
@@ -1052,20 +1059,22 @@ fn plan_binned_sah<S: Source, const N: usize>(
         if scale[a] == 0.0 {
             return None;
         }
-        let mut bins = [EMPTY_BIN; N];
+        let (mut bins, mut counts) = ([LaneBin::EMPTY; N], [0u32; N]);
         for &i in range {
             let b = src.bounds(i);
-            let bin = &mut bins[even_bin(b.center()[a], c.min[a], scale[a], k)];
-            bin.bounds = bin.bounds.union(&b);
-            bin.count += 1;
+            let j = even_bin(b.center()[a], c.min[a], scale[a], k);
+            bins[j] = bins[j].union(&LaneBin::of(&b));
+            counts[j] += 1;
         }
-        return best_boundary(&bins[..k], range.len(), norm).map(|(_, boundary)| Plan::Axis {
-            axis: a,
-            lo: c.min[a],
-            scale: scale[a],
-            k,
-            boundary,
-            known: None,
+        return best_boundary(&bins[..k], &counts[..k], range.len(), norm).map(|(_, boundary)| {
+            Plan::Axis {
+                axis: a,
+                lo: c.min[a],
+                scale: scale[a],
+                k,
+                boundary,
+                known: None,
+            }
         });
     }
     // Bin bounds in 4-lane registers: a union is two instructions, and the
@@ -1094,32 +1103,10 @@ fn plan_binned_sah<S: Source, const N: usize>(
         }
     }
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, boundary)
-    for a in 0..3 {
-        if scale[a] == 0.0 {
-            continue;
-        }
-        let (bins, counts) = (&lanes[a], &counts[a]);
-        let mut right_cost = [0.0f32; N];
-        let (mut acc, mut n) = (LaneBin::EMPTY, 0u32);
-        for j in (1..k).rev() {
-            acc = acc.union(&bins[j]);
-            n += counts[j];
-            right_cost[j] = if n > 0 {
-                norm.half_area_lanes(&acc) * n as f32
-            } else {
-                f32::INFINITY
-            };
-        }
-        let (mut left, mut n) = (LaneBin::EMPTY, 0u32);
-        for j in 1..k {
-            left = left.union(&bins[j - 1]);
-            n += counts[j - 1];
-            if n == 0 || n as usize == range.len() {
-                continue;
-            }
-            let cst = norm.half_area_lanes(&left) * n as f32 + right_cost[j];
-            if best.is_none_or(|(b, _, _)| cst < b) {
-                best = Some((cst, a, j));
+    for a in (0..3).filter(|&a| scale[a] != 0.0) {
+        if let Some((cost, j)) = best_boundary(&lanes[a][..k], &counts[a][..k], range.len(), norm) {
+            if best.is_none_or(|(b, _, _)| cost < b) {
+                best = Some((cost, a, j));
             }
         }
     }
@@ -1142,25 +1129,26 @@ fn plan_binned_sah<S: Source, const N: usize>(
     })
 }
 
-/// The SAH-best boundary of a row of bins: (cost, boundary).
-fn best_boundary(bins: &[Bin], n: usize, norm: &Norm) -> Option<(f32, usize)> {
+/// The SAH-best boundary of a row of bins (`counts[j]` primitives in bin
+/// `j`, `n` in all): (cost, boundary). The first of equal costs wins.
+fn best_boundary(bins: &[LaneBin], counts: &[u32], n: usize, norm: &Norm) -> Option<(f32, usize)> {
     let k = bins.len();
     let mut right_cost = [0.0f32; MAX_BINS];
-    let mut acc = EMPTY_BIN;
+    let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
     for j in (1..k).rev() {
-        acc.bounds = acc.bounds.union(&bins[j].bounds);
-        acc.count += bins[j].count;
-        right_cost[j] = norm.half_area(&acc.bounds) * acc.count as f32;
+        acc = acc.union(&bins[j]);
+        m += counts[j];
+        right_cost[j] = norm.half_area_lanes(&acc) * m as f32;
     }
-    let mut left = EMPTY_BIN;
+    let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
     let mut best: Option<(f32, usize)> = None;
     for j in 1..k {
-        left.bounds = left.bounds.union(&bins[j - 1].bounds);
-        left.count += bins[j - 1].count;
-        if left.count == 0 || left.count as usize == n {
+        left = left.union(&bins[j - 1]);
+        m += counts[j - 1];
+        if m == 0 || m as usize == n {
             continue;
         }
-        let c = norm.half_area(&left.bounds) * left.count as f32 + right_cost[j];
+        let c = norm.half_area_lanes(&left) * m as f32 + right_cost[j];
         if best.is_none_or(|(b, _)| c < b) {
             best = Some((c, j));
         }
