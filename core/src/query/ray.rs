@@ -17,7 +17,7 @@ use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
 #[cfg(feature = "sphere")]
 use crate::Sphere;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A ray `origin + t * dir` for `t` in `[0, t_max]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,12 +168,10 @@ fn within(t: f64, ray: &Ray) -> Option<f32> {
 /// axis-by-axis loop with early exits gave.
 #[inline(always)]
 fn slab(b: &Aabb, ray: &Ray, inv: Vec3) -> Option<f32> {
-    use glam::Vec3A;
-    // 2 * gamma(3) of PBRT, rounded up, plus a pad of 2^-20 of each
-    // coordinate's size that covers the f64 primitive test's rounding.
-    const WIDEN: f32 = 4.0e-7;
+    // The rounding margin, plus a pad of each coordinate's size that covers
+    // the f64 primitive test's rounding.
     let (mn, mx) = (Vec3A::from(b.min), Vec3A::from(b.max));
-    let pad = mn.abs().max(mx.abs()) * (1.0 / 1_048_576.0);
+    let pad = mn.abs().max(mx.abs()) * PAD;
     let (lo, hi) = (mn - pad, mx + pad);
     let o = Vec3A::from(ray.origin);
     let parallel = Vec3A::from(ray.dir).cmpeq(Vec3A::ZERO);
@@ -207,12 +205,11 @@ fn slab(b: &Aabb, ray: &Ray, inv: Vec3) -> Option<f32> {
 #[inline(always)]
 fn slab4(b: &Boxes4, ray: &Ray, inv: Vec3) -> [Option<f32>; MAX_CHILDREN] {
     use glam::{BVec4A, Vec4};
-    const WIDEN: f32 = 4.0e-7;
     let (mut t0, mut t1) = (Vec4::ZERO, Vec4::splat(ray.t_max + ray.t_max * WIDEN));
     let mut live = BVec4A::TRUE;
     for k in 0..3 {
         let (mn, mx) = (Vec4::from_array(b.min[k]), Vec4::from_array(b.max[k]));
-        let pad = mn.abs().max(mx.abs()) * (1.0 / 1_048_576.0);
+        let pad = mn.abs().max(mx.abs()) * PAD;
         let (lo, hi) = (mn - pad, mx + pad);
         let o = Vec4::splat(ray.origin[k]);
         if ray.dir[k] == 0.0 {
@@ -234,21 +231,126 @@ fn slab4(b: &Boxes4, ray: &Ray, inv: Vec3) -> [Option<f32>; MAX_CHILDREN] {
     core::array::from_fn(|k| hit.test(k).then_some(t[k]))
 }
 
+/// What every node test of one ray shares, worked out once per ray.
+///
+/// The general tests ([`slab`], [`slab4`]) pad each box by a fraction of its
+/// own coordinates and handle rays parallel to a slab lane by lane. For the
+/// usual ray, whose `1 / dir` is finite on every axis, the same margin can be
+/// paid once: padding a box by `p` along an axis moves its entry and exit by
+/// `p * |1 / dir|` along the ray, so a pad taken from the root box (at least
+/// every node's own pad, hence at least as conservative) becomes a per-axis
+/// slack in `t`, and the rounding margin is applied once to the final entry
+/// and exit instead of to every lane. About half the instructions of the
+/// general test per box, with the same guarantee: a box whose primitive the
+/// `f64` primitive test would hit is never rejected.
+#[derive(Clone, Copy, Debug)]
+struct Probe {
+    ray: Ray,
+    inv: Vec3,
+    /// Whether the fast test applies (finite `1 / dir` and slack).
+    fast: bool,
+    origin: Vec3A,
+    inv_a: Vec3A,
+    /// Per-axis slack in `t`: twice the root's pad times `|1 / dir|` (twice,
+    /// so that it also covers the rounding of `(lo - o) / dir` before the
+    /// slack is taken off).
+    slack: Vec3A,
+    /// `t_max` widened by the rounding margin.
+    t_max: f32,
+}
+
+/// Rounding margin of the slab test: 2 * gamma(3) of PBRT, rounded up.
+const WIDEN: f32 = 4.0e-7;
+/// The pad of a box, per unit of its largest coordinate magnitude: covers the
+/// `f64` primitive test's rounding with a wide margin.
+const PAD: f32 = 1.0 / 1_048_576.0;
+
+impl Probe {
+    fn new(ray: &Ray, root: &Aabb) -> Probe {
+        let inv = ray.dir.recip();
+        let magnitude = Vec3A::from(root.min.abs().max(root.max.abs()));
+        let inv_a = Vec3A::from(inv);
+        let slack = magnitude * (2.0 * PAD) * inv_a.abs();
+        Probe {
+            ray: *ray,
+            inv,
+            fast: inv_a.is_finite() && slack.is_finite(),
+            origin: Vec3A::from(ray.origin),
+            inv_a,
+            slack,
+            t_max: ray.t_max + ray.t_max * WIDEN,
+        }
+    }
+
+    /// The entry `t` of the ray into `b`, or `None` when it misses.
+    #[inline(always)]
+    fn enter(&self, b: &Aabb) -> Option<f32> {
+        if !self.fast {
+            return slab(b, &self.ray, self.inv);
+        }
+        let (mn, mx) = (Vec3A::from(b.min), Vec3A::from(b.max));
+        let (a, c) = (
+            (mn - self.origin) * self.inv_a,
+            (mx - self.origin) * self.inv_a,
+        );
+        // No lane is NaN here (finite `inv`, finite or infinite differences),
+        // so the plain min / max are exact on every platform.
+        let near = (a.min(c) - self.slack).max_element();
+        let far = (a.max(c) + self.slack).min_element();
+        // A NaN (inf - inf after an overflow) keeps the box, as f32::max
+        // and f32::min ignore it.
+        let t0 = (near - near.abs() * WIDEN).max(0.0);
+        let t1 = (far + far.abs() * WIDEN).min(self.t_max);
+        if t0 > t1 {
+            None
+        } else {
+            Some(t0)
+        }
+    }
+
+    /// [`Probe::enter`] for four boxes at once, lane by lane the same answer.
+    #[inline(always)]
+    fn enter4(&self, b: &Boxes4) -> [Option<f32>; MAX_CHILDREN] {
+        use glam::Vec4;
+        if !self.fast {
+            return slab4(b, &self.ray, self.inv);
+        }
+        let (mut near, mut far) = (Vec4::NEG_INFINITY, Vec4::INFINITY);
+        for k in 0..3 {
+            let (mn, mx) = (Vec4::from_array(b.min[k]), Vec4::from_array(b.max[k]));
+            let (o, i, s) = (
+                Vec4::splat(self.origin[k]),
+                Vec4::splat(self.inv_a[k]),
+                Vec4::splat(self.slack[k]),
+            );
+            let (a, c) = ((mn - o) * i, (mx - o) * i);
+            near = near.max(a.min(c) - s);
+            far = far.min(a.max(c) + s);
+        }
+        let t0 = near - near.abs() * WIDEN;
+        let t1 = far + far.abs() * WIDEN;
+        let (t0, t1) = (t0.to_array(), t1.to_array());
+        core::array::from_fn(|k| {
+            let (t0, t1) = (t0[k].max(0.0), t1[k].min(self.t_max));
+            (t0 <= t1 || t0.is_nan() || t1.is_nan()).then_some(t0)
+        })
+    }
+}
+
 /// Entry `t` of each child of a node (`None` where the ray misses), four at
 /// once when the layout stores the children's boxes side by side.
 #[inline(always)]
 fn enter_children<H: Hierarchy + ?Sized>(
     h: &H,
     kids: &Kids,
-    ray: &Ray,
-    inv: Vec3,
+    probe: &Probe,
 ) -> [Option<f32>; MAX_CHILDREN] {
     if let Some(b) = h.children_boxes(kids) {
-        return slab4(b, ray, inv);
+        return probe.enter4(b);
     }
     let mut out = [None; MAX_CHILDREN];
     for (o, &c) in out.iter_mut().zip(kids.of_arity(H::ARITY)) {
-        *o = enter(h, c, ray, inv);
+        *o = enter(h, c, probe);
     }
     out
 }
@@ -313,8 +415,8 @@ impl<B: BoundingVolume> Bvh<'_, B> {
 
 /// The ray's entry parameter into a node's volume (through its box).
 #[inline(always)]
-fn enter<H: Hierarchy + ?Sized>(h: &H, n: u32, ray: &Ray, inv: Vec3) -> Option<f32> {
-    slab(&h.bv(n).aabb(), ray, inv)
+fn enter<H: Hierarchy + ?Sized>(h: &H, n: u32, probe: &Probe) -> Option<f32> {
+    probe.enter(&h.bv(n).aabb())
 }
 
 /// Tests a leaf's primitives, keeping the closest hit in `best`.
@@ -349,20 +451,20 @@ pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
     if h.is_empty() {
         return Ok(None);
     }
-    let inv = ray.dir.recip();
+    let probe = Probe::new(ray, &h.bv(h.root()).aabb());
     tally.bv_tests(1);
-    let Some(t_root) = enter(h, h.root(), ray, inv) else {
+    let Some(t_root) = enter(h, h.root(), &probe) else {
         return Ok(None);
     };
     match order {
         // Each order in its own function, so only its stack is on the call stack.
         RayOrder::DepthFirst if H::ARITY == 2 => {
-            ray_depth_first::<H, P, BINARY_DFS_STACK>(h, prims, ray, inv, t_root, &mut tally)
+            ray_depth_first::<H, P, BINARY_DFS_STACK>(h, prims, &probe, t_root, &mut tally)
         }
         RayOrder::DepthFirst => {
-            ray_depth_first::<H, P, DFS_STACK>(h, prims, ray, inv, t_root, &mut tally)
+            ray_depth_first::<H, P, DFS_STACK>(h, prims, &probe, t_root, &mut tally)
         }
-        RayOrder::BestFirst => ray_best_first(h, prims, ray, inv, t_root, &mut tally),
+        RayOrder::BestFirst => ray_best_first(h, prims, &probe, t_root, &mut tally),
     }
 }
 
@@ -371,45 +473,89 @@ pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
 fn ray_depth_first<H: Hierarchy + ?Sized, P: RayTarget, const N: usize>(
     h: &H,
     prims: &[P],
-    ray: &Ray,
-    inv: Vec3,
+    probe: &Probe,
     t_root: f32,
     tally: &mut impl Tally,
 ) -> Result<Option<Hit>, Error> {
     let mut best: Option<Hit> = None;
-    let beaten = |t: f32, best: &Option<Hit>| best.is_some_and(|b| t > b.t);
+    // The best hit's distance (infinite before the first hit): a node whose
+    // entry lies beyond it cannot hold a closer (or tying) hit.
+    let mut best_t = f32::INFINITY;
     let mut stack = Stack::<(u32, f32), N>::with((h.root(), t_root), h.depth());
-    while let Some((n, t)) = stack.pop() {
-        if beaten(t, &best) {
-            continue;
-        }
-        match h.content(n) {
-            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
-            Content::Inner(kids) => {
-                let entries = enter_children(h, &kids, ray, inv);
-                let kids = kids.of_arity(H::ARITY);
-                tally.bv_tests(kids.len() as u32);
-                // Sort the hit children far to near, so the nearest is popped first.
-                let mut hit = [(0u32, 0f32); MAX_CHILDREN];
-                let mut m = 0;
-                for (&c, &entry) in kids.iter().zip(&entries) {
-                    if let Some(tc) = entry {
-                        let mut k = m;
-                        while k > 0 && hit[k - 1].1 < tc {
-                            hit[k] = hit[k - 1];
-                            k -= 1;
-                        }
-                        hit[k] = (c, tc);
-                        m += 1;
-                    }
+    // The node to open next: the nearest child of the last node opened is
+    // taken at once, without a round trip through the stack.
+    let mut next = stack.pop();
+    while let Some((n, t)) = next {
+        next = None;
+        if t <= best_t {
+            match h.content(n) {
+                Content::Leaf(here) => {
+                    closest_in_leaf(prims, here, &probe.ray, &mut best, tally);
+                    best_t = best.map_or(f32::INFINITY, |b| b.t);
                 }
-                for &e in &hit[..m] {
-                    stack.push(e)?;
+                Content::Inner(kids) => {
+                    let entries = enter_children(h, &kids, probe);
+                    let kids = kids.of_arity(H::ARITY);
+                    tally.bv_tests(kids.len() as u32);
+                    next = nearest_first(kids, &entries, &mut stack)?;
                 }
             }
         }
+        if next.is_none() {
+            next = stack.pop();
+        }
     }
     Ok(best)
+}
+
+/// Pushes the children the ray enters, farthest first, except the nearest,
+/// which it returns (`None` when the ray enters none).
+#[inline(always)]
+fn nearest_first<const N: usize>(
+    kids: &[u32],
+    entries: &[Option<f32>; MAX_CHILDREN],
+    stack: &mut Stack<(u32, f32), N>,
+) -> Result<Option<(u32, f32)>, Error> {
+    if let ([a, b], [ea, eb, ..]) = (kids, entries) {
+        // A binary node: no sort, at most one push.
+        return Ok(match (*ea, *eb) {
+            (Some(ta), Some(tb)) => {
+                let (near, far) = if tb < ta {
+                    ((*b, tb), (*a, ta))
+                } else {
+                    ((*a, ta), (*b, tb))
+                };
+                stack.push(far)?;
+                Some(near)
+            }
+            (Some(ta), None) => Some((*a, ta)),
+            (None, Some(tb)) => Some((*b, tb)),
+            (None, None) => None,
+        });
+    }
+    // Wider nodes: sort keys (entry bits above child slot; a missed child
+    // sorts last) with a fixed network of compare-exchanges, which compile
+    // to conditional moves: the insertion sort it replaced mispredicted on
+    // most nodes. Entries are >= +0, whose bit patterns order like the values.
+    const _: () = assert!(MAX_CHILDREN == 4, "the network and the slot mask assume 4");
+    let mut key = [u64::MAX; MAX_CHILDREN];
+    for (k, (slot, entry)) in key.iter_mut().zip(entries).enumerate().take(kids.len()) {
+        *slot = entry.map_or(u64::MAX, |t| {
+            (u64::from((t + 0.0).to_bits()) << 32) | k as u64
+        });
+    }
+    for (i, j) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+        let (lo, hi) = (key[i].min(key[j]), key[i].max(key[j]));
+        key[i] = lo;
+        key[j] = hi;
+    }
+    let m = key.iter().take_while(|&&k| k != u64::MAX).count();
+    let unkey = |k: u64| (kids[(k & 3) as usize], f32::from_bits((k >> 32) as u32));
+    for &k in key[1..m.max(1)].iter().rev() {
+        stack.push(unkey(k))?;
+    }
+    let nearest = (m > 0).then(|| unkey(key[0]));
+    Ok(nearest)
 }
 
 /// Best-first closest hit on the fixed queue.
@@ -417,8 +563,7 @@ fn ray_depth_first<H: Hierarchy + ?Sized, P: RayTarget, const N: usize>(
 fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
     h: &H,
     prims: &[P],
-    ray: &Ray,
-    inv: Vec3,
+    probe: &Probe,
     t_root: f32,
     tally: &mut impl Tally,
 ) -> Result<Option<Hit>, Error> {
@@ -432,9 +577,9 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
             break;
         }
         match h.content(n) {
-            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
+            Content::Leaf(here) => closest_in_leaf(prims, here, &probe.ray, &mut best, tally),
             Content::Inner(kids) => {
-                let entries = enter_children(h, &kids, ray, inv);
+                let entries = enter_children(h, &kids, probe);
                 let kids = kids.of_arity(H::ARITY);
                 tally.bv_tests(kids.len() as u32);
                 for (&c, &entry) in kids.iter().zip(&entries) {
@@ -443,7 +588,7 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
                     };
                     if !heap.push(tc as f64, c) {
                         // Queue full: search this subtree depth-first now.
-                        best = subtree_ray(h, prims, ray, inv, c, best, tally)?;
+                        best = subtree_ray(h, prims, probe, c, best, tally)?;
                     }
                 }
             }
@@ -456,8 +601,7 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
 fn subtree_ray<H: Hierarchy + ?Sized, P: RayTarget>(
     h: &H,
     prims: &[P],
-    ray: &Ray,
-    inv: Vec3,
+    probe: &Probe,
     root: u32,
     mut best: Option<Hit>,
     tally: &mut impl Tally,
@@ -465,12 +609,12 @@ fn subtree_ray<H: Hierarchy + ?Sized, P: RayTarget>(
     let mut stack = Stack::<u32, DFS_STACK>::with(root, h.depth());
     while let Some(n) = stack.pop() {
         tally.bv_tests(1);
-        match enter(h, n, ray, inv) {
+        match enter(h, n, probe) {
             Some(t) if !best.is_some_and(|b| t > b.t) => {}
             _ => continue,
         }
         match h.content(n) {
-            Content::Leaf(here) => closest_in_leaf(prims, here, ray, &mut best, tally),
+            Content::Leaf(here) => closest_in_leaf(prims, here, &probe.ray, &mut best, tally),
             Content::Inner(kids) => {
                 for &c in kids.as_slice().iter().rev() {
                     stack.push(c)?;
@@ -492,11 +636,11 @@ pub(crate) fn ray_hits_any<H: Hierarchy + ?Sized, P: RayTarget>(
     if h.is_empty() {
         return Ok(None);
     }
-    let inv = ray.dir.recip();
+    let probe = Probe::new(ray, &h.bv(h.root()).aabb());
     let mut stack = Stack::<u32, DFS_STACK>::with(h.root(), h.depth());
     while let Some(n) = stack.pop() {
         tally.bv_tests(1);
-        if enter(h, n, ray, inv).is_none() {
+        if enter(h, n, &probe).is_none() {
             continue;
         }
         match h.content(n) {
@@ -581,5 +725,172 @@ mod tests {
             }
         }
         assert!(checked > 1000, "too few hits to mean anything: {checked}");
+    }
+
+    /// A small xorshift source of floats in [-1, 1).
+    fn floats(seed: u64) -> impl FnMut() -> f32 {
+        let mut s = seed;
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        }
+    }
+
+    /// The shared per-ray test answers like the general one's four-lane
+    /// form, lane by lane, and its four-lane form like its one-box form.
+    #[test]
+    fn probe_four_lanes_equal_one_box() {
+        let mut next = floats(0x1234_5678_9abc_def1);
+        let (mut fast, mut hits) = (0, 0);
+        for round in 0..20_000 {
+            let scale = [1.0f32, 1e-3, 1e5, 1e30][round % 4];
+            let mut b = Boxes4::EMPTY;
+            for k in 0..4 {
+                for axis in 0..3 {
+                    let (x, y) = (next() * scale, next() * scale);
+                    b.min[axis][k] = x.min(y);
+                    b.max[axis][k] = if round % 7 == 0 { x.min(y) } else { x.max(y) };
+                }
+            }
+            let mut dir = Vec3::new(next(), next(), next());
+            if round % 5 == 0 {
+                dir[round % 3] = 0.0;
+            }
+            let origin = Vec3::new(next(), next(), next()) * scale;
+            let Ok(ray) = Ray::new(origin, dir, [f32::INFINITY, scale][round % 2]) else {
+                continue;
+            };
+            let root = Aabb::new(Vec3::splat(-scale), Vec3::splat(scale));
+            let probe = Probe::new(&ray, &root);
+            fast += probe.fast as usize;
+            let four = probe.enter4(&b);
+            for (k, got) in four.iter().enumerate() {
+                let one = Aabb::new(
+                    Vec3::new(b.min[0][k], b.min[1][k], b.min[2][k]),
+                    Vec3::new(b.max[0][k], b.max[1][k], b.max[2][k]),
+                );
+                assert_eq!(
+                    got.map(f32::to_bits),
+                    probe.enter(&one).map(f32::to_bits),
+                    "round {round} lane {k}"
+                );
+                hits += got.is_some() as usize;
+            }
+        }
+        assert!(fast > 10_000 && hits > 1000, "fast {fast}, hits {hits}");
+    }
+
+    /// No box the ray truly enters is rejected, and the entry reported is
+    /// never later than a point of the ray inside the box: boxes are built
+    /// around a point of the ray (in f64, rounded outward to f32), as thin
+    /// as f32 allows, at scales from 1e-4 to 1e6 and with the origin near
+    /// or far.
+    #[test]
+    fn probe_never_rejects_a_box_the_ray_enters() {
+        let mut next = floats(0x0dd_ba11_cafe_f00d);
+        let mut fast = 0;
+        for round in 0..50_000 {
+            let scale = [1.0f32, 1e-4, 1e3, 1e6][round % 4];
+            let centre = Vec3::new(next(), next(), next()) * scale * [0.0, 1.0, 100.0][round % 3];
+            let origin = centre + Vec3::new(next(), next(), next()) * scale;
+            let dir = Vec3::new(next(), next(), next());
+            let Ok(ray) = Ray::new(origin, dir, f32::INFINITY) else {
+                continue;
+            };
+            let t = (next().abs() * 4.0) as f64;
+            let q = ray.origin.as_dvec3() + ray.dir.as_dvec3() * t;
+            // The box: q rounded down and up per axis, grown by a random
+            // thickness on some axes (zero on others: flat boxes).
+            let (mut lo, mut hi) = (Vec3::ZERO, Vec3::ZERO);
+            for k in 0..3 {
+                let x = q[k] as f32;
+                let (down, up) = if (x as f64) > q[k] {
+                    (x.next_down(), x)
+                } else if (x as f64) < q[k] {
+                    (x, x.next_up())
+                } else {
+                    (x, x)
+                };
+                let grow = if (round + k) % 3 == 0 {
+                    0.0
+                } else {
+                    next().abs() * scale
+                };
+                lo[k] = down - grow;
+                hi[k] = up + grow * (round % 2) as f32;
+            }
+            let b = Aabb::new(lo, hi);
+            let root = Aabb::new(lo.min(origin) - scale, hi.max(origin) + scale);
+            let probe = Probe::new(&ray, &root);
+            fast += probe.fast as usize;
+            let entry = probe.enter(&b);
+            assert!(
+                entry.is_some_and(|e| e as f64 <= t * (1.0 + 1e-6) + 1e-30),
+                "round {round}: {ray:?} enters {b:?} by t = {t}, got {entry:?}"
+            );
+            assert_eq!(entry.is_some(), slab(&b, &ray, ray.dir.recip()).is_some());
+        }
+        assert!(fast > 40_000, "fast path taken {fast} times");
+    }
+
+    /// Rays through a corner, an edge or a face of a box, exactly: on a
+    /// coarse grid `origin = q - t * dir` is exact in f32, so the ray meets
+    /// the point `q` at `t` with no rounding, and only the slab test's own
+    /// rounding (of `1 / dir` and of each product) can separate its entry
+    /// from its exit. Such a box must still be entered, by `t` at the latest.
+    #[test]
+    fn probe_keeps_boxes_the_ray_only_touches() {
+        let mut next = floats(0xfeed_beef_1357_9bdf);
+        let grid = |x: f32, step: f32| (x / step).round() * step;
+        let (mut point_boxes, mut checked) = (0, 0);
+        for round in 0..50_000 {
+            let scale = [1.0f32, 1.0 / 1024.0, 1024.0][round % 3];
+            let q = Vec3::new(next(), next(), next()).map(|x| grid(x * scale, scale / 64.0));
+            let dir = Vec3::new(next(), next(), next()).map(|x| grid(x * 3.0, 1.0 / 16.0));
+            let t = [1.0f32, 4.0, 0.5, 32.0][round % 4];
+            let origin = q - dir * t;
+            // Some rays end exactly at the point they touch the box.
+            let t_max = [f32::INFINITY, t][round % 2];
+            let Ok(ray) = Ray::new(origin, dir, t_max) else {
+                continue;
+            };
+            assert_eq!(origin + dir * t, q, "not exact: {origin} {dir} {t}");
+            // A point box, or a box with q on a face, an edge or a corner.
+            let mut lo = q;
+            let mut hi = q;
+            let mode = (round / 3) % 5;
+            for k in 0..3 {
+                match if mode == 4 { 0 } else { (mode + k) % 4 } {
+                    0 => {}
+                    1 => hi[k] += scale * next().abs(),
+                    2 => lo[k] -= scale * next().abs(),
+                    _ => {
+                        lo[k] -= scale * next().abs();
+                        hi[k] += scale * next().abs();
+                    }
+                }
+            }
+            point_boxes += (lo == hi) as usize;
+            let b = Aabb::new(lo, hi);
+            let root = Aabb::new(Vec3::splat(-4.0 * scale), Vec3::splat(4.0 * scale))
+                .union(&Aabb::new(origin, origin));
+            let probe = Probe::new(&ray, &root);
+            let entry = probe.enter(&b);
+            assert!(
+                entry.is_some_and(|e| e <= t * (1.0 + 1e-6)),
+                "round {round}: {ray:?} touches {b:?} at t = {t}, got {entry:?}"
+            );
+            assert!(
+                slab(&b, &ray, ray.dir.recip()).is_some(),
+                "round {round}: general test"
+            );
+            checked += 1;
+        }
+        assert!(
+            checked > 45_000 && point_boxes > 1000,
+            "{checked} rays, {point_boxes} point boxes"
+        );
     }
 }

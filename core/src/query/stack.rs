@@ -11,12 +11,16 @@ pub(crate) struct Stack<T, const N: usize> {
     depth: usize,
 }
 
-impl<T: Copy, const N: usize> Stack<T, N> {
+impl<T: Copy + Default, const N: usize> Stack<T, N> {
     /// A stack holding `first`, for a tree of `depth` (reported on overflow).
     #[inline(always)] // built in the caller's frame, not copied into it
     pub(crate) fn with(first: T, depth: usize) -> Self {
+        // Filled with zeros (one block clear), not with copies of `first`
+        // (one store per entry): a query on a small tree pays this per call.
+        let mut items = [T::default(); N];
+        items[0] = first;
         Stack {
-            items: [first; N],
+            items,
             len: 1,
             depth,
         }
