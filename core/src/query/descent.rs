@@ -168,12 +168,15 @@ fn by_overlap<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
     match (d.a_children, d.b_children) {
         (Some(ac), Some(bc)) => {
             let (a, b) = (d.a.aabb(), d.b.aabb());
-            // A small pad keeps flat boxes (coplanar scenes) comparable.
-            let pad = 1e-3 * a.union(&b).extent().max_element();
-            let inside = |x: &Aabb, y: &Aabb| shared(x, y, pad) / shared(x, x, pad);
+            // A small pad keeps flat boxes (coplanar scenes) comparable; the
+            // smallest normal number keeps points from dividing 0 by 0.
+            let pad = (1e-3 * a.union(&b).extent().max_element()).max(f32::MIN_POSITIVE);
             // Mean over the children, so a wide node compares with a binary one.
             let stays = |cs: &[B], other: &Aabb| {
-                cs.iter().map(|c| inside(&c.aabb(), other)).sum::<f64>() / cs.len().max(1) as f64
+                cs.iter()
+                    .map(|c| inside(&c.aabb(), other, pad))
+                    .sum::<f32>()
+                    / cs.len().max(1) as f32
             };
             let (a_stays, b_stays) = (stays(ac, &b), stays(bc, &a));
             if a_stays <= b_stays {
@@ -195,13 +198,15 @@ fn larger<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
     }
 }
 
-/// Volume of the intersection of two boxes, each side padded by `pad`, in
-/// `f64` (zero when disjoint).
-fn shared(x: &Aabb, y: &Aabb, pad: f32) -> f64 {
-    let lo = x.min.max(y.min).as_dvec3();
-    let hi = x.max.min(y.max).as_dvec3();
-    let e = (hi - lo + pad as f64).max(glam::DVec3::ZERO);
-    e.x * e.y * e.z
+/// The fraction of `x`'s volume inside `y`, each side padded by `pad`: the
+/// product over the axes of the shared extent over `x`'s own. Each factor is
+/// in [0, 1], so it neither overflows nor needs `f64` (which a
+/// microcontroller without a double-precision unit emulates in software).
+fn inside(x: &Aabb, y: &Aabb, pad: f32) -> f32 {
+    let own = x.extent() + pad;
+    let shared = (x.max.min(y.max) - x.min.max(y.min) + pad).max(glam::Vec3::ZERO);
+    let f = (shared / own).min(glam::Vec3::ONE);
+    f.x * f.y * f.z
 }
 
 /// A combination of two rules: `near` for the first `depth` descents, `far`

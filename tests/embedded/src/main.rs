@@ -176,10 +176,25 @@ fn run(clock: &Clock) -> bool {
     match demo(clock) {
         Ok(()) => true,
         Err(e) => {
-            hprintln!("error {:?}", e);
+            print_error(e);
             false
         }
     }
+}
+
+/// Prints an error the way the feature set chooses, so that the footprint
+/// table shows what each way costs: the fixed sentence by default (no
+/// formatting code), `Display` or `Debug` with `print-display` or
+/// `print-debug`.
+#[cfg(feature = "minimal")]
+#[inline(never)]
+fn print_error(e: bvhkit::Error) {
+    #[cfg(feature = "print-debug")]
+    hprintln!("error {:?}", e);
+    #[cfg(all(feature = "print-display", not(feature = "print-debug")))]
+    hprintln!("error {}", e);
+    #[cfg(not(any(feature = "print-debug", feature = "print-display")))]
+    hprintln!("error {}", e.as_str());
 }
 
 /// Times a pair query (`query` reports each pair to its callback), then
