@@ -201,3 +201,79 @@ fn every_error_has_a_message() {
         assert!(e.to_string().len() > 10, "{e:?}");
     }
 }
+
+/// A query's own input is checked: a NaN or inverted region, a negative
+/// radius, a NaN point or ray is an `InvalidQuery`, on a full tree and on an
+/// empty one, never an answer of nothing that looks like a miss. Infinite
+/// bounds ask for everything.
+#[test]
+fn unusable_query_inputs_are_invalid_query_errors() {
+    use bvhkit::query::{Order, Query, Ray, RayOrder};
+    use bvhkit::{BoundingVolume, Dop14, Sphere};
+    let t = tris(20);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(20)];
+    let mut idx = vec![0u32; 20];
+    let full = TopDown::sah().build(&t, &mut nodes, &mut idx).unwrap();
+    let empty = TopDown::sah()
+        .build(&[] as &[Triangle], &mut [], &mut [])
+        .unwrap();
+    let nan = Vec3::new(0.0, f32::NAN, 0.0);
+    let boxes = [
+        Aabb::new(nan, Vec3::ONE),
+        Aabb::new(Vec3::ONE, Vec3::ZERO),
+        Aabb::new(Vec3::new(0.0, 2.0, 0.0), Vec3::new(1.0, 1.0, 1.0)),
+        Aabb::EMPTY,
+    ];
+    for (tree, prims) in [(&full, &t[..]), (&empty, &[][..])] {
+        for b in &boxes {
+            let got = tree.overlapping(prims, b, |_| {});
+            assert!(matches!(got, Err(Error::InvalidQuery(_))), "{b:?}: {got:?}");
+            let got = Query::search(tree, prims, b, Order::DepthFirst, (), |_| {});
+            assert!(matches!(got, Err(Error::InvalidQuery(_))), "{b:?}: {got:?}");
+        }
+        for s in [
+            Sphere::new(nan, 1.0),
+            Sphere::new(Vec3::ZERO, -1.0),
+            Sphere::new(Vec3::ZERO, f32::NAN),
+            Sphere::new(Vec3::splat(f32::INFINITY), 1.0),
+        ] {
+            let got = tree.overlapping(prims, &s, |_| {});
+            assert!(matches!(got, Err(Error::InvalidQuery(_))), "{s:?}: {got:?}");
+        }
+        let mut dop = Dop14::fit(&[Vec3::ZERO, Vec3::ONE][..]);
+        dop.min[4] = dop.max[4] + 1.0;
+        let got = tree.overlapping(prims, &dop, |_| {});
+        assert!(matches!(got, Err(Error::InvalidQuery(_))), "{got:?}");
+        let got = tree.nearest(prims, nan, ());
+        assert!(matches!(got, Err(Error::InvalidQuery(_))), "{got:?}");
+        // Valid regions still answer (everything, on the full tree),
+        // infinite ones included.
+        let all = Aabb::new(Vec3::splat(-1.0), Vec3::splat(30.0));
+        assert_eq!(tree.overlapping(prims, &all, |_| {}), Ok(prims.len()));
+        let infinite = Aabb::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY));
+        assert_eq!(tree.overlapping(prims, &infinite, |_| {}), Ok(prims.len()));
+        let huge = Sphere::new(Vec3::ZERO, f32::INFINITY);
+        assert_eq!(tree.overlapping(prims, &huge, |_| {}), Ok(prims.len()));
+    }
+    for (o, d, t_max) in [
+        (nan, Vec3::X, 1.0),
+        (Vec3::ZERO, nan, 1.0),
+        (Vec3::ZERO, Vec3::ZERO, 1.0),
+        (Vec3::ZERO, Vec3::X, f32::NAN),
+        (Vec3::ZERO, Vec3::X, -1.0),
+        (Vec3::ZERO, Vec3::splat(f32::INFINITY), 1.0),
+    ] {
+        assert!(matches!(Ray::new(o, d, t_max), Err(Error::InvalidQuery(_))));
+    }
+    let ray = Ray::new(Vec3::ZERO, Vec3::X, 1.0).unwrap();
+    assert!(matches!(
+        ray.with_t_max(f32::NAN),
+        Err(Error::InvalidQuery(_))
+    ));
+    assert_eq!(
+        ray.with_t_max(f32::INFINITY).unwrap().t_max(),
+        f32::INFINITY
+    );
+    let hit = full.cast_ray(&t, &ray, RayOrder::DepthFirst, ());
+    assert!(hit.is_ok());
+}

@@ -157,9 +157,9 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
         .rays
         .iter()
         .map(|r| BRay {
-            origin: r.origin.to_array().into(),
-            direction: r.dir.to_array().into(),
-            inv_direction: r.dir.recip().to_array().into(),
+            origin: r.origin().to_array().into(),
+            direction: r.dir().to_array().into(),
+            inv_direction: r.dir().recip().to_array().into(),
         })
         .collect();
     let hits = time(runs.rays, || {

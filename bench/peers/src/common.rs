@@ -125,7 +125,7 @@ pub fn boxes_overlap(p: &Aabb, q: &Aabb) -> bool {
 /// Möller–Trumbore (`Triangle::ray_hit`), limited to `t <= t_max`.
 #[inline]
 pub fn hit_triangle(tris: &[Triangle], prim: u32, ray: &Ray, t_max: f32) -> Option<f32> {
-    let r = Ray { t_max, ..*ray };
+    let r = ray.with_t_max(t_max).expect("t_max from a hit is >= 0");
     tris[prim as usize].ray_hit(&r)
 }
 

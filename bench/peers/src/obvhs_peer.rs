@@ -252,8 +252,8 @@ fn to_bvhkit(b: &obvhs::aabb::Aabb) -> Aabb {
 /// A scene ray as obvhs's, `t` in `[0, INFINITY)`.
 fn to_obvhs_ray(r: &Ray) -> obvhs::ray::Ray {
     obvhs::ray::Ray::new(
-        r.origin.to_array().into(),
-        r.dir.to_array().into(),
+        r.origin().to_array().into(),
+        r.dir().to_array().into(),
         0.0,
         f32::INFINITY,
     )

@@ -31,7 +31,7 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
     let rays: Vec<ParryRay> = scene
         .rays
         .iter()
-        .map(|r| ParryRay::new(vector(r.origin), vector(r.dir)))
+        .map(|r| ParryRay::new(vector(r.origin()), vector(r.dir())))
         .collect();
 
     let builders = [
@@ -85,7 +85,7 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
                     .map(|(ray, parry_ray)| -> RayHit {
                         // The callback gets the closest distance so far, so the
                         // triangle test can stop at it.
-                        a.cast_ray(parry_ray, ray.t_max, |prim, best| {
+                        a.cast_ray(parry_ray, ray.t_max(), |prim, best| {
                             hit_triangle(&scene.a, prim, ray, best)
                         })
                     })

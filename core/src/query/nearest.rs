@@ -197,7 +197,7 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
 ) -> Result<Option<Nearest>, Error> {
     check_query(h, prims.len())?;
     if !point.is_finite() {
-        return Err(Error::InvalidConfig("the query point must be finite"));
+        return Err(Error::InvalidQuery("the query point must be finite"));
     }
     if h.is_empty() {
         return Ok(None);

@@ -20,19 +20,30 @@ use crate::Sphere;
 use glam::{Vec3, Vec3A};
 
 /// A ray `origin + t * dir` for `t` in `[0, t_max]`.
+///
+/// Made only by [`Ray::new`], which checks it: the fields are private, so a
+/// ray with a NaN or zero direction (which no query could answer
+/// meaningfully) cannot reach a query.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
-    /// Start point.
-    pub origin: Vec3,
-    /// Direction (need not be unit length; `t` is measured in its units).
-    pub dir: Vec3,
-    /// Largest `t` of interest (may be infinite).
-    pub t_max: f32,
+    origin: Vec3,
+    dir: Vec3,
+    t_max: f32,
 }
 
 impl Ray {
     /// A ray, checked: finite origin, finite non-zero direction, `t_max >= 0`
-    /// and not NaN.
+    /// and not NaN (it may be infinite).
+    ///
+    /// ```
+    /// use bvhkit::query::Ray;
+    /// use bvhkit::glam::Vec3;
+    /// let r = Ray::new(Vec3::ZERO, Vec3::X, 10.0)?;
+    /// assert_eq!((r.origin(), r.dir(), r.t_max()), (Vec3::ZERO, Vec3::X, 10.0));
+    /// assert!(Ray::new(Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 1.0), 1.0).is_err());
+    /// assert!(Ray::new(Vec3::ZERO, Vec3::ZERO, 1.0).is_err());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Result<Ray, Error> {
         if !origin.is_finite()
             || !dir.is_finite()
@@ -40,11 +51,39 @@ impl Ray {
             || t_max.is_nan()
             || t_max < 0.0
         {
-            return Err(Error::InvalidConfig(
+            return Err(Error::InvalidQuery(
                 "a ray needs a finite origin, a finite non-zero direction and t_max >= 0",
             ));
         }
         Ok(Ray { origin, dir, t_max })
+    }
+
+    /// Start point.
+    #[inline]
+    pub const fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// Direction (need not be unit length; `t` is measured in its units).
+    #[inline]
+    pub const fn dir(&self) -> Vec3 {
+        self.dir
+    }
+
+    /// Largest `t` of interest (may be infinite).
+    #[inline]
+    pub const fn t_max(&self) -> f32 {
+        self.t_max
+    }
+
+    /// The same ray ending at `t_max` (`>= 0`, not NaN, may be infinite).
+    /// Cheap: origin and direction were checked when the ray was made.
+    #[inline]
+    pub fn with_t_max(&self, t_max: f32) -> Result<Ray, Error> {
+        if t_max.is_nan() || t_max < 0.0 {
+            return Err(Error::InvalidQuery("a ray needs t_max >= 0"));
+        }
+        Ok(Ray { t_max, ..*self })
     }
 }
 
@@ -190,8 +229,7 @@ fn slab(b: &Aabb, ray: &Ray, inv: Vec3) -> Option<f32> {
     let far = Vec3A::select(far_ok, far, Vec3A::INFINITY);
     let t0 = near.max_element().max(0.0);
     let t1 = far.min_element().min(ray.t_max + ray.t_max * WIDEN);
-    // Not `t0 <= t1`: a NaN `t_max` (fields are public) must not turn a hit
-    // into a miss, as it did not in the scalar loop.
+    // Not `t0 <= t1`: a NaN bound (inf - inf after an overflow) keeps the box.
     if t0 > t1 {
         None
     } else {

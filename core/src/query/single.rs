@@ -32,9 +32,28 @@ pub trait Region: BoundingVolume {
     fn may_overlap<B: BoundingVolume>(&self, bv: &B) -> bool {
         self.overlaps_aabb(&bv.aabb())
     }
+
+    /// Refuses a region no query can answer meaningfully (every query calls
+    /// it first): a NaN, or bounds that are inverted (an empty set, whose
+    /// answer "nothing" would look like a real miss). Infinite bounds are
+    /// fine: a box from `-inf` to `+inf` asks for everything. An `Err` is
+    /// [`Error::InvalidQuery`].
+    fn check(&self) -> Result<(), Error>;
 }
 
 impl Region for Aabb {
+    fn check(&self) -> Result<(), Error> {
+        if self.min.is_nan() || self.max.is_nan() {
+            return Err(Error::InvalidQuery("the query box has a NaN coordinate"));
+        }
+        if self.min.cmpgt(self.max).any() {
+            return Err(Error::InvalidQuery(
+                "the query box is inverted (min > max on an axis)",
+            ));
+        }
+        Ok(())
+    }
+
     /// An AABB region's leaf test is exact, so any conservative node test is
     /// enough; the node volume's own test is the tightest available.
     #[inline]
@@ -44,10 +63,32 @@ impl Region for Aabb {
 }
 
 #[cfg(feature = "sphere")]
-impl Region for Sphere {}
+impl Region for Sphere {
+    fn check(&self) -> Result<(), Error> {
+        // An infinite radius (everything) is fine.
+        if !self.center.is_finite() || self.radius.is_nan() || self.radius < 0.0 {
+            return Err(Error::InvalidQuery(
+                "the query sphere needs a finite centre and a radius >= 0",
+            ));
+        }
+        Ok(())
+    }
+}
 
 #[cfg(feature = "kdop")]
-impl<const K: usize> Region for Kdop<K> {}
+impl<const K: usize> Region for Kdop<K> {
+    fn check(&self) -> Result<(), Error> {
+        if self.min.iter().chain(&self.max).any(|x| x.is_nan()) {
+            return Err(Error::InvalidQuery("the query k-DOP has a NaN bound"));
+        }
+        if self.min.iter().zip(&self.max).any(|(lo, hi)| lo > hi) {
+            return Err(Error::InvalidQuery(
+                "the query k-DOP is inverted (min > max on a direction)",
+            ));
+        }
+        Ok(())
+    }
+}
 
 /// Traversal order of a single-tree query.
 ///
@@ -81,6 +122,7 @@ pub trait Query: Hierarchy {
         mut f: impl FnMut(u32),
     ) -> Result<usize, Error> {
         check_query(self, prims.len())?;
+        region.check()?;
         if self.is_empty() {
             return Ok(0);
         }
@@ -124,6 +166,7 @@ pub trait Query: Hierarchy {
         mut f: impl FnMut(u32),
     ) -> Result<usize, Error> {
         check_query(self, prims.len())?;
+        region.check()?;
         if self.is_empty() {
             return Ok(0);
         }
