@@ -74,6 +74,9 @@ pub enum Input {
     Default {
         /// Icosphere subdivisions (6 = 81 920 triangles).
         subdivisions: u32,
+        /// Applied to B after [`default_motion`] (the identity leaves the
+        /// default scene): B's tree is moved, not rebuilt.
+        placement: Rigid,
     },
     /// Two meshes, in the same frame.
     Meshes {
@@ -84,6 +87,16 @@ pub enum Input {
         /// Triangles of B.
         b: Vec<Triangle>,
     },
+}
+
+impl Input {
+    /// The built-in scene as it is, with `subdivisions`.
+    pub fn default_scene(subdivisions: u32) -> Input {
+        Input::Default {
+            subdivisions,
+            placement: Rigid::IDENTITY,
+        }
+    }
 }
 
 /// The motion that places the default scene's copy: a turn and a shift that
@@ -179,20 +192,29 @@ fn run_with<B: BoundingVolume>(
     let trav = traversal(&opts.traversal, opts.descent)?;
     let err = |e: bvhkit::Error| e.to_string();
     match input {
-        Input::Default { subdivisions } => {
+        Input::Default {
+            subdivisions,
+            placement,
+        } => {
             let mesh = scene::rock(*subdivisions, 1);
             let (build, tree) = median_time(opts.runs, || builder.build::<B>(&mesh));
             let tree = tree.map_err(err)?;
             let t = tree.view();
-            let name =
-                format!("rock ({subdivisions} subdivisions) and a moved copy of the same tree");
+            let placed = if placement.is_identity() {
+                ""
+            } else {
+                ", placed further by --rotate-b / --translate-b"
+            };
+            let name = format!(
+                "rock ({subdivisions} subdivisions) and a moved copy of the same tree{placed}"
+            );
             measure(
                 &name,
                 &t,
                 &mesh,
                 &t,
                 &mesh,
-                default_motion(),
+                placement.after(&default_motion()),
                 trav,
                 opts,
                 build_ms(build),
@@ -381,7 +403,7 @@ mod tests {
                     verify: true,
                     ..CollideOptions::default()
                 };
-                let r = run(&Input::Default { subdivisions: 3 }, &opts).unwrap();
+                let r = run(&Input::default_scene(3), &opts).unwrap();
                 assert_eq!(r.verified, Some(true), "{traversal} {mode:?}");
                 assert!(r.reference_pairs.unwrap() > 0);
                 assert!(
@@ -397,7 +419,7 @@ mod tests {
 
     #[test]
     fn bad_names_are_errors() {
-        let input = Input::Default { subdivisions: 1 };
+        let input = Input::default_scene(1);
         for opts in [
             CollideOptions {
                 volume: "cube".into(),

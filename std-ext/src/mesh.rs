@@ -87,6 +87,25 @@ impl Default for Placement {
 }
 
 impl Placement {
+    /// The placement as a rigid motion (rotation, then translation), for a
+    /// tree that is moved rather than rebuilt; an error when it scales
+    /// (a rigid motion cannot) or is not finite.
+    pub fn rigid(&self) -> Result<bvhkit::Rigid, String> {
+        if self.scale != 1.0 {
+            return Err(format!(
+                "scale {} needs mesh files: the built-in scene moves B's tree rigidly, \
+                 without rebuilding it, and a rigid motion cannot scale",
+                self.scale
+            ));
+        }
+        if !(self.rotate_deg.is_finite() && self.translate.is_finite()) {
+            return Err("rotation and translation must be finite".into());
+        }
+        let r = self.rotate_deg * (std::f32::consts::PI / 180.0);
+        let q = bvhkit::glam::Quat::from_euler(bvhkit::glam::EulerRot::ZYX, r.z, r.y, r.x);
+        bvhkit::Rigid::new(q, self.translate).map_err(|e| e.to_string())
+    }
+
     /// The placed copy of `tris`; an error when a result is not finite (a
     /// huge scale or translation) or the scale is not positive.
     pub fn apply(&self, tris: &[Triangle]) -> Result<Vec<Triangle>, String> {

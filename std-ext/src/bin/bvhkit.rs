@@ -45,6 +45,8 @@ enum Command {
         a: Option<PathBuf>,
         /// Mesh file of object B, in A's frame (default: a copy of A; place it
         /// with --scale-b, --rotate-b and --translate-b to make it overlap).
+        /// On the built-in scene, --rotate-b and --translate-b move B further
+        /// (after its default motion); --scale-b needs mesh files.
         b: Option<PathBuf>,
         /// Scale B about the origin (before rotating).
         #[arg(long, default_value_t = 1.0)]
@@ -499,15 +501,15 @@ fn main() -> ExitCode {
             json,
         } => {
             let bar = spinner("loading, building and colliding");
+            let placement = bvhkit_std::mesh::Placement {
+                scale: scale_b,
+                rotate_deg: rotate_b.0,
+                translate: translate_b.0,
+            };
             let input = match a {
                 Some(a) => {
                     let b_path = b.clone().unwrap_or_else(|| a.clone());
                     let load = |p: &PathBuf| bvhkit_std::mesh::load(p);
-                    let placement = bvhkit_std::mesh::Placement {
-                        scale: scale_b,
-                        rotate_deg: rotate_b.0,
-                        translate: translate_b.0,
-                    };
                     let loaded = load(&a).and_then(|ta| Ok((ta, load(&b_path)?)));
                     match loaded {
                         Ok((ta, tb)) => match placement.apply(&tb) {
@@ -527,7 +529,18 @@ fn main() -> ExitCode {
                         }
                     }
                 }
-                None => Input::Default { subdivisions },
+                // The built-in scene: B's tree is moved after the default
+                // motion, not rebuilt, so only a rigid placement applies.
+                None => match placement.rigid() {
+                    Ok(placement) => Input::Default {
+                        subdivisions,
+                        placement,
+                    },
+                    Err(e) => {
+                        eprintln!("error: placing B: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                },
             };
             let opts = CollideOptions {
                 volume: bv,
