@@ -10,6 +10,8 @@ use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Node, Sphere, TopDown};
 use std::panic::{self, AssertUnwindSafe};
+use std::sync::mpsc;
+use std::time::Duration;
 
 /// One check: a name, its points, and the test.
 #[derive(Clone, Copy)]
@@ -1115,10 +1117,26 @@ fn median_ok(e: &dyn Exercises, stretch: Vec3, seed: u64) -> bool {
     left <= right
 }
 
-/// Runs every check on `e`; a panicking check scores 0.
-pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
-    let hook = panic::take_hook();
-    panic::set_hook(Box::new(|_| {}));
+/// How long one check may run before it scores 0 (a loop that never ends
+/// costs only that check's points; the reference answers need well under a
+/// second per check even unoptimised).
+pub const CHECK_TIME_LIMIT: Duration = Duration::from_secs(10);
+
+/// Runs every check on `e`; a check that fails, panics or runs past
+/// [`CHECK_TIME_LIMIT`] scores 0, and the others are still graded.
+pub fn grade(e: &'static (dyn Exercises + Sync)) -> Vec<ExerciseScore> {
+    grade_each(e, CHECK_TIME_LIMIT, |_| {})
+}
+
+/// [`grade`] with a time limit per check, calling `done` with each
+/// exercise's score as soon as its checks have run (so that a long or stuck
+/// exercise does not hide the results before it).
+pub fn grade_each(
+    e: &'static (dyn Exercises + Sync),
+    limit: Duration,
+    mut done: impl FnMut(&ExerciseScore),
+) -> Vec<ExerciseScore> {
+    quiet_checks();
     let mut scores: Vec<ExerciseScore> = EXERCISES
         .iter()
         .map(|&(exercise, title)| ExerciseScore {
@@ -1129,48 +1147,154 @@ pub fn grade(e: &dyn Exercises) -> Vec<ExerciseScore> {
             failed: vec![],
         })
         .collect();
-    for c in checks() {
+    let all = checks();
+    for (k, c) in all.iter().enumerate() {
         let s = &mut scores[(c.exercise - 1) as usize];
         s.possible += c.points;
-        match panic::catch_unwind(AssertUnwindSafe(|| (c.run)(e))) {
-            Ok(true) => s.earned += c.points,
-            Ok(false) => s.failed.push(c.name.to_string()),
-            Err(p) => {
+        match run_check(c, e, limit) {
+            Ok(()) => s.earned += c.points,
+            Err(why) => s.failed.push(why),
+        }
+        if all
+            .get(k + 1)
+            .is_none_or(|next| next.exercise != c.exercise)
+        {
+            done(s);
+        }
+    }
+    scores
+}
+
+/// Installs, once, a panic hook that records where a check panicked
+/// (instead of printing it) on the grader's check threads, and leaves every
+/// other thread's panics to the hook that was there before. Installed for
+/// good rather than swapped per run, so that runs on several threads (the
+/// tests) cannot leave the quiet hook behind.
+fn quiet_checks() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            let is_check = std::thread::current()
+                .name()
+                .is_some_and(|n| n.starts_with(CHECK_THREAD));
+            if is_check {
+                let at = info.location().map(|l| (l.file().to_string(), l.line()));
+                PANIC_AT.with(|p| *p.borrow_mut() = at);
+            } else {
+                previous(info);
+            }
+        }));
+    });
+}
+
+/// The name prefix of the threads checks run on.
+const CHECK_THREAD: &str = "grader check ";
+
+thread_local! {
+    /// Where the last panic on this thread happened (file, line).
+    static PANIC_AT: std::cell::RefCell<Option<(String, u32)>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Runs one check on its own thread, so that one that never returns can be
+/// abandoned after `limit`. `Err` says why it scored 0.
+fn run_check(c: &Check, e: &'static (dyn Exercises + Sync), limit: Duration) -> Result<(), String> {
+    let (tx, rx) = mpsc::channel();
+    let run = c.run;
+    let spawned = std::thread::Builder::new()
+        .name(format!("{CHECK_THREAD}{} {}", c.exercise, c.name))
+        .spawn(move || {
+            let out = panic::catch_unwind(AssertUnwindSafe(|| run(e)));
+            let out = out.map_err(|p| {
                 let msg = p
                     .downcast_ref::<String>()
                     .cloned()
                     .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
                     .unwrap_or_default();
-                s.failed.push(format!("{} (panicked: {msg})", c.name));
-            }
+                (msg, PANIC_AT.with(|at| at.borrow_mut().take()))
+            });
+            // The receiver is gone if the check ran past its limit.
+            let _ = tx.send(out);
+        });
+    if let Err(err) = spawned {
+        return Err(format!("{} (could not start: {err})", c.name));
+    }
+    match rx.recv_timeout(limit) {
+        Ok(Ok(true)) => Ok(()),
+        Ok(Ok(false)) => Err(c.name.to_string()),
+        Ok(Err((msg, at))) => Err(format!("{} (panicked{}: {msg})", c.name, where_(at))),
+        Err(_) => Err(format!(
+            "{} (did not finish within {} s: a loop that never ends?)",
+            c.name,
+            limit.as_secs_f64()
+        )),
+    }
+}
+
+/// " in `method` at student.rs:LINE" when the panic happened in a student's
+/// answer (the method found from the source), else " at FILE:LINE".
+fn where_(at: Option<(String, u32)>) -> String {
+    let Some((file, line)) = at else {
+        return String::new();
+    };
+    if file.ends_with("student.rs") {
+        if let Some(method) = enclosing_fn(include_str!("student.rs"), line) {
+            return format!(" in your `{method}` at student.rs:{line}");
         }
     }
-    panic::set_hook(hook);
-    scores
+    format!(" at {file}:{line}")
+}
+
+/// The name of the last `fn` declared at or before `line` (1-based) of `source`.
+fn enclosing_fn(source: &str, line: u32) -> Option<&str> {
+    source
+        .lines()
+        .take(line as usize)
+        .filter_map(|l| {
+            let rest = l.trim_start().strip_prefix("fn ")?;
+            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .next()
+        })
+        .last()
+}
+
+/// The header line of the table [`report`] prints.
+pub fn report_header() -> String {
+    format!("{:<4} {:<44} {:>8}\n", "#", "exercise", "points")
+}
+
+/// One exercise's lines of the table: its score, then each failed check.
+pub fn report_exercise(x: &ExerciseScore) -> String {
+    let mut s = format!(
+        "{:<4} {:<44} {:>8}\n",
+        x.exercise,
+        x.title,
+        format!("{}/{}", x.earned, x.possible)
+    );
+    for f in &x.failed {
+        s += &format!("       - failed: {f}\n");
+    }
+    s
+}
+
+/// The last line of the table: `total: E/P points (X%)`.
+pub fn report_total(scores: &[ExerciseScore]) -> String {
+    let (e, p): (u32, u32) = scores
+        .iter()
+        .fold((0, 0), |(e, p), x| (e + x.earned, p + x.possible));
+    format!(
+        "total: {e}/{p} points ({}%)\n",
+        (e * 100).checked_div(p).unwrap_or(0)
+    )
 }
 
 /// The table the `grade` command prints; the last line is `total: E/P points (X%)`.
 pub fn report(scores: &[ExerciseScore]) -> String {
-    let mut s = format!("{:<4} {:<44} {:>8}\n", "#", "exercise", "points");
+    let mut s = report_header();
     for x in scores {
-        s += &format!(
-            "{:<4} {:<44} {:>8}\n",
-            x.exercise,
-            x.title,
-            format!("{}/{}", x.earned, x.possible)
-        );
-        for f in &x.failed {
-            s += &format!("       - failed: {f}\n");
-        }
+        s += &report_exercise(x);
     }
-    let (e, p): (u32, u32) = scores
-        .iter()
-        .fold((0, 0), |(e, p), x| (e + x.earned, p + x.possible));
-    s += &format!(
-        "total: {e}/{p} points ({}%)\n",
-        (e * 100).checked_div(p).unwrap_or(0)
-    );
-    s
+    s + &report_total(scores)
 }
 
 #[cfg(test)]
@@ -1179,7 +1303,7 @@ mod tests {
     use crate::reference::Reference;
     use crate::student::Student;
 
-    fn earned(e: &dyn Exercises, exercise: u32) -> (u32, u32) {
+    fn earned(e: &'static (dyn Exercises + Sync), exercise: u32) -> (u32, u32) {
         let s = &grade(e)[(exercise - 1) as usize];
         (s.earned, s.possible)
     }
@@ -1194,6 +1318,80 @@ mod tests {
 
     /// Plausible wrong answers, each delegating everything else to the reference.
     struct Wrong(u32);
+    /// The wrong answer whose exercise 8 never returns.
+    const LOOPS: u32 = 1000;
+    /// The wrong answer whose exercise 11 (`implicit_len`) panics.
+    const PANICS: u32 = 1001;
+
+    /// A never-returning answer scores 0 on its own checks only, after the
+    /// time limit, and every other exercise is graded (and reported as it
+    /// is done) as if nothing happened.
+    #[test]
+    fn a_looping_answer_costs_only_its_own_checks() {
+        let e: &'static Wrong = Box::leak(Box::new(Wrong(LOOPS)));
+        let mut reported = Vec::new();
+        let start = std::time::Instant::now();
+        let scores = grade_each(e, Duration::from_secs(2), |x| reported.push(x.exercise));
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "{:?}",
+            start.elapsed()
+        );
+        assert_eq!(reported, (1..=EXERCISES.len() as u32).collect::<Vec<_>>());
+        for s in &scores {
+            if s.exercise == 8 {
+                assert_eq!(s.earned, 0, "{s:?}");
+                assert!(
+                    s.failed
+                        .iter()
+                        .all(|f| f.contains("did not finish within 2 s")),
+                    "{s:?}"
+                );
+            } else {
+                assert_eq!(s.earned, s.possible, "{s:?}");
+            }
+        }
+    }
+
+    /// A panic in an answer names where it happened and its message; the
+    /// other checks are graded.
+    #[test]
+    fn a_panicking_answer_is_named_with_its_message() {
+        let e: &'static Wrong = Box::leak(Box::new(Wrong(PANICS)));
+        let s = &grade(e)[10];
+        assert!(s.exercise == 11 && s.earned < s.possible, "{s:?}");
+        assert!(
+            s.failed.iter().any(|f| f.contains("panicked at ")
+                && f.contains("grader.rs:")
+                && f.ends_with(": a slip)")),
+            "{s:?}"
+        );
+        assert_eq!(grade(e)[0].earned, grade(e)[0].possible);
+    }
+
+    /// The method around a line of the student's file is found from its source.
+    #[test]
+    fn a_panic_in_the_students_file_names_the_method() {
+        let src = "impl X {\n    fn first(&self) {\n        a();\n    }\n    fn second_one(&self) -> u32 {\n        b()\n    }\n}\n";
+        assert_eq!(enclosing_fn(src, 3), Some("first"));
+        assert_eq!(enclosing_fn(src, 6), Some("second_one"));
+        assert_eq!(enclosing_fn(src, 1), None);
+        assert_eq!(where_(None), "");
+        assert_eq!(
+            where_(Some(("core/src/x.rs".into(), 7))),
+            " at core/src/x.rs:7"
+        );
+        let student = include_str!("student.rs");
+        let line = student
+            .lines()
+            .position(|l| l.contains("fn descend_a"))
+            .unwrap() as u32
+            + 2;
+        assert_eq!(
+            where_(Some(("exercises/src/student.rs".into(), line))),
+            format!(" in your `descend_a` at student.rs:{line}")
+        );
+    }
     impl Exercises for Wrong {
         fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
             match self.0 {
@@ -1317,6 +1515,13 @@ mod tests {
         }
         fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)> {
             let n = boxes.len() as u32;
+            if self.0 == LOOPS {
+                // Never removes the merged clusters: never returns (asleep,
+                // so the abandoned thread costs no CPU).
+                loop {
+                    std::thread::sleep(Duration::from_secs(3600));
+                }
+            }
             match self.0 {
                 // Merges in index order: a chain, not greedy.
                 14 => (1..n)
@@ -1400,6 +1605,7 @@ mod tests {
         }
         fn implicit_len(&self, depth: u32) -> usize {
             match self.0 {
+                PANICS => panic!("a slip"),
                 22 => 1 << depth, // only the last level
                 _ => Reference.implicit_len(depth),
             }
@@ -1561,7 +1767,8 @@ mod tests {
             (35, 15),
             (36, 12),
         ] {
-            let (e, p) = earned(&Wrong(wrong), exercise);
+            // Leaked: each check runs on a thread that may outlive the call.
+            let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);
             assert!(
                 e < p,
                 "wrong answer {wrong} got full marks on exercise {exercise}"
@@ -1578,6 +1785,16 @@ mod tests {
         }
         let scores = grade(&Student);
         assert_eq!(scores.len(), EXERCISES.len());
-        assert!(scores.iter().all(|s| s.earned == 0 && s.possible > 0));
+        assert!(
+            scores.iter().all(|s| s.earned == 0 && s.possible > 0),
+            "the exercise stubs in exercises/src/student.rs are no longer untouched. If you \
+             are working on the exercises, this is expected: run the tests with \
+             BVHKIT_STUDENT=1 to skip this check (see the book's exercises chapter), and \
+             `cargo run -p bvhkit-exercises --bin grade` for your score. Scores now: {:?}",
+            scores
+                .iter()
+                .map(|s| (s.exercise, s.earned))
+                .collect::<Vec<_>>()
+        );
     }
 }
