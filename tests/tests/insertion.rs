@@ -305,3 +305,97 @@ fn bad_handles_and_bounds_are_errors() {
     )
     .is_err());
 }
+
+/// After removals the leaves of a dynamic tree carry ids that are not
+/// `0..len`: the tree it writes must answer every query over the caller's
+/// whole slice (indexed by id), refuse a slice too short for its largest id
+/// with an error, and never panic (it did, in the pair walk, found by trying
+/// the engine workflow: insert, remove, `to_bvh`, `Pairs::new`).
+#[test]
+fn a_dynamic_tree_with_removed_ids_answers_by_id_and_never_panics() {
+    use bvhkit::query::{Ray, RayOrder};
+    use bvhkit::Pairs;
+    let tris: Vec<Triangle> = (0..10)
+        .map(|i| {
+            let o = Vec3::new(i as f32 * 0.6, 0.0, 0.0);
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+        .collect();
+    let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * tris.len()];
+    let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+    let handles: Vec<u32> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            tree.insert(i as u32, &bvhkit::Primitive::bounds(t))
+                .unwrap()
+        })
+        .collect();
+    tree.remove(handles[3]).unwrap();
+    tree.remove(handles[0]).unwrap();
+    let mut nodes = vec![Node::<Aabb>::EMPTY; 2 * tris.len()];
+    let mut idx = vec![0u32; tris.len()];
+    let bvh = tree.to_bvh(&mut nodes, &mut idx).unwrap();
+    assert_eq!((bvh.primitive_count(), bvh.index_bound()), (8, 10));
+    // Every query over the whole slice answers for the ids still in the tree.
+    let kept = |i: u32| i != 3 && i != 0;
+    let mut want = Vec::new();
+    brute_force::pairs(&tris, &tris, |i, j| {
+        if kept(i) {
+            want.push((i, j));
+        }
+    });
+    let mut got = Vec::new();
+    Pairs::new(&bvh, &tris, &other(&tris), &tris)
+        .for_each(|i, j| got.push((i, j)))
+        .unwrap();
+    got.sort_unstable();
+    want.sort_unstable();
+    assert_eq!(got, want);
+    let everything = Aabb::new(Vec3::splat(-10.0), Vec3::splat(10.0));
+    let mut found = Vec::new();
+    bvh.overlapping(&tris, &everything, |i| found.push(i))
+        .unwrap();
+    found.sort_unstable();
+    assert_eq!(found, [1, 2, 4, 5, 6, 7, 8, 9]);
+    let ray = Ray::new(Vec3::new(0.1, 0.1, -1.0), Vec3::Z, f32::INFINITY).unwrap();
+    assert_eq!(
+        bvh.cast_ray(&tris, &ray, RayOrder::DepthFirst, ()).unwrap(),
+        None
+    );
+    assert!(bvh
+        .nearest(&tris, Vec3::ZERO, ())
+        .unwrap()
+        .is_some_and(|n| kept(n.prim)));
+    // A slice too short for id 9 is an error from every query, not a panic.
+    let short = &tris[..9];
+    let expect = Err(Error::PrimitiveCountMismatch { tree: 10, given: 9 });
+    assert_eq!(
+        Pairs::new(&bvh, short, &other(&tris), &tris).count(),
+        expect
+    );
+    assert_eq!(bvh.overlapping(short, &everything, |_| {}), expect);
+    assert_eq!(
+        bvh.nearest(short, Vec3::ZERO, ()).map(|_| ()),
+        expect.map(|_: usize| ())
+    );
+    // Layouts need dense ids: converting is refused with a reason.
+    let mut pre = vec![bvhkit::layout::PreNode::<Aabb, u32>::EMPTY; bvh.node_count()];
+    assert!(matches!(
+        bvhkit::layout::Preorder::from_bvh(&bvh, &mut pre),
+        Err(Error::InvalidTree(_))
+    ));
+    let mut wide = vec![bvhkit::layout::WideNode::EMPTY; 64];
+    assert!(matches!(
+        bvhkit::layout::Wide::from_bvh(&bvh, &mut wide),
+        Err(Error::InvalidTree(_))
+    ));
+}
+
+/// A dense tree over the same triangles, for the other side of pair queries.
+fn other(tris: &[Triangle]) -> bvhkit::Bvh<'static, Aabb> {
+    let nodes =
+        Box::leak(vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())].into_boxed_slice());
+    let idx = Box::leak(vec![0u32; tris.len()].into_boxed_slice());
+    TopDown::sah().build(tris, nodes, idx).unwrap()
+}

@@ -662,7 +662,16 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             };
             (node.bv, kind)
         })?;
-        Ok(Bvh::from_built(&nodes[..needed], &indices[..n], depth))
+        let bound = indices[..n]
+            .iter()
+            .max()
+            .map_or(0, |&m| m.saturating_add(1));
+        Ok(Bvh::from_built_ids(
+            &nodes[..needed],
+            &indices[..n],
+            depth,
+            bound,
+        ))
     }
 }
 

@@ -96,6 +96,7 @@ impl<'a, B: BoundingVolume> Implicit<'a, B> {
     /// Lays `bvh` out level by level in `out` (at least
     /// [`slots_needed`](Self::slots_needed) entries).
     pub fn from_bvh(bvh: &Bvh<'a, B>, out: &'a mut [Slot<B>]) -> Result<Self, Error> {
+        super::dense(bvh)?;
         let needed = Self::slots_needed(bvh)?;
         check_capacity(needed, out.len())?;
         let out = &mut out[..needed];

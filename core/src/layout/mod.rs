@@ -249,11 +249,25 @@ pub(crate) struct SlotSource {
 /// step of [`wide_walk`], made by `record` from the slots' exact boxes and
 /// sources. Returns the records used and the number of logical nodes.
 #[inline(never)] // its stack stays out of the caller's frame
+/// Refuses a tree whose leaves name ids with gaps (a dynamic tree after
+/// removals): a layout keeps only the primitive count, so its queries index
+/// the slice by position.
+pub(crate) fn dense<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<(), Error> {
+    if bvh.index_bound() != bvh.primitive_count() {
+        return Err(Error::InvalidTree(
+            "the layouts need leaves numbered 0..n; this tree names ids with gaps \
+             (a dynamic tree after removals): query it as it is",
+        ));
+    }
+    Ok(())
+}
+
 pub(crate) fn fill_wide<B: BoundingVolume, R>(
     bvh: &Bvh<'_, B>,
     out: &mut [R],
     mut record: impl FnMut(&[crate::bv::Aabb], &[SlotSource]) -> Result<R, Error>,
 ) -> Result<(usize, u32), Error> {
+    dense(bvh)?;
     let needed = wide_walk(bvh, |_, _| Ok(()))?;
     check_capacity(needed, out.len())?;
     let nodes = bvh.nodes();

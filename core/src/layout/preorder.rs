@@ -119,6 +119,7 @@ impl<'a, B: BoundingVolume, O: Offset> Preorder<'a, B, O> {
     /// records). A node index or leaf start beyond the link type is an
     /// [`Error::FieldOverflow`], never a wrap-around.
     pub fn from_bvh(bvh: &Bvh<'a, B>, out: &'a mut [PreNode<B, O>]) -> Result<Self, Error> {
+        super::dense(bvh)?;
         let count = bvh.node_count();
         check_capacity(count, out.len())?;
         crate::tree::hierarchy::check_query(bvh, bvh.primitive_count())?;

@@ -92,6 +92,7 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
     /// Fuses `bvh` into tri-nodes in `out` (at least
     /// [`records_needed`](Self::records_needed)).
     pub fn from_bvh(bvh: &Bvh<'a, B>, out: &'a mut [TriNode<B>]) -> Result<Self, Error> {
+        super::dense(bvh)?;
         let needed = Self::records_needed(bvh)?;
         check_capacity(needed, out.len())?;
         if needed > (u32::MAX / 4) as usize {

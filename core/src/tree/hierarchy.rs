@@ -181,6 +181,12 @@ pub trait Hierarchy {
     fn depth(&self) -> usize;
     /// Number of primitives the tree was built over.
     fn primitive_count(&self) -> usize;
+    /// The largest primitive index a leaf names, plus one: the shortest
+    /// slice a query takes (see [`Bvh::index_bound`]). The layouts hold
+    /// dense trees only, so the default is the count.
+    fn index_bound(&self) -> usize {
+        self.primitive_count()
+    }
     /// Number of logical nodes (leaves and internal nodes).
     fn node_count(&self) -> usize;
     /// Bytes of storage in use: node records and the primitive index array.
@@ -226,11 +232,17 @@ pub trait Hierarchy {
 /// Checks that a query can run on `h`: the primitive slice matches and the
 /// tree fits the fixed traversal stacks.
 pub(crate) fn check_query<H: Hierarchy + ?Sized>(h: &H, given: usize) -> Result<(), Error> {
-    if given != h.primitive_count() {
-        return Err(Error::PrimitiveCountMismatch {
-            tree: h.primitive_count(),
-            given,
-        });
+    // Leaves numbered 0..n (every builder): the slice must be the one the
+    // tree was built over, as long. Leaves naming ids with gaps (a dynamic
+    // tree after removals): the slice must hold every id named.
+    let (count, bound) = (h.primitive_count(), h.index_bound());
+    let fits = if bound == count {
+        given == count
+    } else {
+        given >= bound
+    };
+    if !fits {
+        return Err(Error::PrimitiveCountMismatch { tree: bound, given });
     }
     if h.depth() > MAX_DEPTH {
         return Err(Error::StackOverflow {
@@ -281,6 +293,10 @@ impl<B: BoundingVolume> Hierarchy for Bvh<'_, B> {
 
     fn primitive_count(&self) -> usize {
         Bvh::primitive_count(self)
+    }
+
+    fn index_bound(&self) -> usize {
+        Bvh::index_bound(self)
     }
 
     fn node_count(&self) -> usize {

@@ -117,6 +117,11 @@ pub struct Bvh<'a, B> {
     nodes: &'a [Node<B>],
     indices: &'a [u32],
     depth: u32,
+    /// The largest primitive index a leaf names, plus one: the shortest
+    /// primitive slice a query can take. Builders number primitives `0..n`
+    /// (so it is `n`); a [`DynamicTree`](crate::build::DynamicTree) after
+    /// removals names the caller's ids, which can leave gaps.
+    bound: u32,
 }
 
 impl<'a, B: BoundingVolume> Bvh<'a, B> {
@@ -126,6 +131,20 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             nodes,
             indices,
             depth,
+            bound: indices.len() as u32,
+        }
+    }
+
+    /// [`from_built`](Self::from_built) for leaves naming ids below `bound`.
+    pub(crate) fn from_built_ids(
+        nodes: &'a [Node<B>],
+        indices: &'a [u32],
+        depth: u32,
+        bound: u32,
+    ) -> Self {
+        Bvh {
+            bound,
+            ..Bvh::from_built(nodes, indices, depth)
         }
     }
 
@@ -133,12 +152,15 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     /// `Vec` by the std side), without re-checking it. `depth` is the depth the
     /// builder reported. For storage from anywhere else (a file, user code) use
     /// [`from_parts`](Self::from_parts), which validates: a query over
-    /// inconsistent raw parts may index out of bounds.
+    /// inconsistent raw parts may index out of bounds. Reads the indices
+    /// once for the largest (a tree written by a
+    /// [`DynamicTree`](crate::build::DynamicTree) names ids with gaps).
     pub fn from_raw_parts(nodes: &'a [Node<B>], indices: &'a [u32], depth: usize) -> Self {
         Bvh {
             nodes,
             indices,
             depth: depth.min(u32::MAX as usize) as u32,
+            bound: indices.iter().max().map_or(0, |&m| m.saturating_add(1)),
         }
     }
 
@@ -156,6 +178,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             nodes,
             indices,
             depth,
+            bound: indices.iter().max().map_or(0, |&m| m + 1),
         };
         bvh.validate(prims, seen)?;
         Ok(bvh)
@@ -208,6 +231,17 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     #[inline]
     pub fn primitive_count(&self) -> usize {
         self.indices.len()
+    }
+
+    /// The shortest primitive slice a query takes: the largest index a leaf
+    /// names, plus one. It equals [`primitive_count`](Self::primitive_count)
+    /// for every builder, whose leaves name `0..n`; a
+    /// [`DynamicTree`](crate::build::DynamicTree) after removals writes a
+    /// tree whose leaves name the caller's ids, and its queries take the
+    /// caller's whole slice, indexed by id.
+    #[inline]
+    pub fn index_bound(&self) -> usize {
+        self.bound as usize
     }
 
     /// Depth of the deepest leaf (the root alone has depth 0).
