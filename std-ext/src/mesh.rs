@@ -242,12 +242,60 @@ fn ply_error(text: &str, size: u64) -> String {
     format!("not a readable PLY file: {first}")
 }
 
+/// What ply-rs does not check in a header before acting on it: a number too
+/// long for 64 bits (it panicked; found by fuzzing), and element counts
+/// that the bytes after the header cannot hold (each element takes at least
+/// one byte), which would have it read or reserve for data that is not there.
+fn check_ply_header(bytes: &[u8], fail: Fail<'_>) -> Result<(), MeshError> {
+    let mut offset = 0usize;
+    let mut announced: Vec<(usize, String, u64)> = Vec::new();
+    for (n, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        offset += line.len() + 1;
+        let text = String::from_utf8_lossy(line);
+        let text = text.trim();
+        // Every run of digits, even inside a word: ply-rs's grammar converts
+        // the digits it meets before it knows whether the line parses.
+        for run in text.split(|c: char| !c.is_ascii_digit()) {
+            if !run.is_empty() && run.parse::<u64>().is_err() {
+                return Err(fail(format!(
+                    "line {}: the number {run} is too large for a PLY header",
+                    n + 1
+                )));
+            }
+        }
+        if let Some(rest) = text.strip_prefix("element") {
+            let words: Vec<&str> = rest.split_whitespace().collect();
+            if let [name, count] = words[..] {
+                if let Ok(count) = count.parse::<u64>() {
+                    announced.push((n + 1, name.to_string(), count));
+                }
+            }
+        }
+        if text == "end_header" {
+            let data = bytes.len().saturating_sub(offset) as u64;
+            let mut total = 0u64;
+            for (line, name, count) in &announced {
+                total = total.saturating_add(*count);
+                if total > data {
+                    return Err(fail(format!(
+                        "line {line}: the header announces {count} '{name}' elements, more than \
+                         the {data} bytes after the header can hold"
+                    )));
+                }
+            }
+            break;
+        }
+    }
+    Ok(())
+}
+
 fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     use ply_rs::ply::Property;
-    let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
-    let mut reader = std::io::BufReader::new(file);
+    let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
+    check_ply_header(&bytes, fail)?;
+    let size = bytes.len() as u64;
+    let mut reader = std::io::Cursor::new(&bytes);
     let parser = ply_rs::parser::Parser::<ply_rs::ply::DefaultElement>::new();
-    let size = std::fs::metadata(path).map_or(0, |m| m.len());
     let ply = parser
         .read_ply(&mut reader)
         .map_err(|e| fail(ply_error(&e.to_string(), size)))?;
@@ -509,6 +557,36 @@ mod tests {
         let p = dir.join(name);
         std::fs::write(&p, text).unwrap();
         p
+    }
+
+    /// Found by fuzzing (`scripts/fuzz`, target `mesh_ply`): an element count
+    /// too long for 64 bits panicked inside ply-rs; a count the file cannot
+    /// hold is refused before ply-rs acts on it. Both name the line.
+    #[test]
+    fn ply_headers_with_impossible_counts_are_errors() {
+        let huge = format!(
+            "ply\nformat ascii 1.0\nelement vertex 2{}\nproperty float x\nend_header\n",
+            "1".repeat(60)
+        );
+        let err = load(&write("huge.ply", &huge)).unwrap_err().to_string();
+        assert!(
+            err.contains("huge.ply") && err.contains("line 3") && err.contains("too large"),
+            "{err}"
+        );
+        let lying = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01\x02";
+        let err = load(&write("lying.ply", lying)).unwrap_err().to_string();
+        assert!(
+            err.contains("line 3") && err.contains("4000000000"),
+            "{err}"
+        );
+        // No end_header at all: ply-rs's own error, not a panic.
+        assert!(load(&write("open.ply", "ply\nelement ce 21\n")).is_err());
+        // Digits glued to letters (the second input fuzzing found).
+        let glued = format!("element A77 {}AAA9\n", "7".repeat(40));
+        assert!(load(&write("glued.ply", &glued))
+            .unwrap_err()
+            .to_string()
+            .contains("too large"));
     }
 
     #[test]

@@ -277,3 +277,35 @@ fn unusable_query_inputs_are_invalid_query_errors() {
     let hit = full.cast_ray(&t, &ray, RayOrder::DepthFirst, ());
     assert!(hit.is_ok());
 }
+
+/// Found by fuzzing (`scripts/fuzz`, target `tree_bytes`): a node whose
+/// first child index is out of range, up to `u32::MAX` (where the second
+/// child's index wraps to 0), made `Bvh::from_parts` panic instead of
+/// refusing the tree.
+#[test]
+fn trees_from_bytes_with_child_indices_out_of_range_are_refused() {
+    use bvhkit::Bvh;
+    let tris = tris(2);
+    let leaf = |first| Node {
+        bv: Aabb::new(Vec3::splat(-10.0), Vec3::splat(10.0)),
+        first,
+        count: 1,
+    };
+    for first in [u32::MAX, u32::MAX - 1, 1 << 27, 3] {
+        let nodes = [
+            Node {
+                bv: Aabb::new(Vec3::splat(-10.0), Vec3::splat(10.0)),
+                first,
+                count: 0,
+            },
+            leaf(0),
+            leaf(1),
+        ];
+        let mut seen = vec![0u32; Bvh::<Aabb>::seen_words(3, 2)];
+        let got = Bvh::from_parts(&nodes, &[0, 1], &tris, &mut seen);
+        assert!(
+            matches!(got, Err(Error::InvalidTree(_))),
+            "first {first}: {got:?}"
+        );
+    }
+}

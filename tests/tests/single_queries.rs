@@ -197,3 +197,47 @@ fn bad_rays_and_points_are_errors() {
         "wrong primitive slice"
     );
 }
+
+/// Found by fuzzing (`scripts/fuzz`, target `build_query`): a ray running
+/// along an edge of a triangle, in its plane, made the f64 Möller–Trumbore
+/// test report a hit at t = 0, 2 mm away from the triangle (outside its
+/// box), so brute force and the tree (which pruned that box) disagreed. A
+/// hit now lies in the triangle's box, and both answer alike.
+#[test]
+fn a_ray_in_a_triangles_plane_never_hits_outside_its_box() {
+    use bvhkit::glam::Vec3;
+    use bvhkit::{brute_force, Aabb, Ray, RayOrder, Triangle};
+    let tris = [
+        Triangle::new(
+            Vec3::new(-1.5625e-7, -0.0040960936, -0.0018957813),
+            Vec3::new(-0.0018874999, -0.0018874999, -0.0018874999),
+            Vec3::new(-1.5625e-7, -1.5625e-7, -1.5625e-7),
+        ),
+        Triangle::new(
+            Vec3::new(-1.5625e-7, -1.5625e-7, -1.6093749e-5),
+            Vec3::new(-0.0040801563, -0.0040960936, -0.0040960936),
+            Vec3::new(-0.0040960936, -0.0040960936, -0.0040960936),
+        ),
+    ];
+    let ray = Ray::new(
+        Vec3::splat(-0.0040960936),
+        Vec3::splat(0.004095937),
+        f32::INFINITY,
+    )
+    .unwrap();
+    let want = brute_force::ray_closest(&tris, &ray);
+    for builder in bvhkit_std::builders::catalogue() {
+        let tree = builder.2.build::<Aabb>(&tris).unwrap();
+        let got = tree
+            .view()
+            .cast_ray(&tris, &ray, RayOrder::DepthFirst, ())
+            .unwrap();
+        assert_eq!(got.map(|h| h.t), want.map(|h| h.t), "{}", builder.0);
+    }
+    // Any hit on the first triangle lies in its box.
+    if let Some(t) = bvhkit::RayTarget::ray_hit(&tris[0], &ray) {
+        let p = ray.origin() + ray.dir() * t;
+        let b = bvhkit::Primitive::bounds(&tris[0]);
+        assert!(b.distance_squared(p) < 1e-12, "hit at {p} outside {b:?}");
+    }
+}

@@ -135,7 +135,21 @@ impl RayTarget for Triangle {
         if v < 0.0 || u + v > 1.0 {
             return None;
         }
-        within(e2.dot(q) * inv, ray)
+        let t = e2.dot(q) * inv;
+        // A ray nearly in the triangle's plane makes `det` tiny and `u`, `v`,
+        // `t` unreliable: the "hit" can lie far outside the triangle (found
+        // by fuzzing: a ray along an edge reported t = 0 at a point 2 mm from
+        // it). Keep only hits inside the triangle's box, padded by half the
+        // pad of the tree's box test (less the rounding of the hit point),
+        // so that the tree never prunes a box whose triangle this test hits.
+        let hit = o + d * t;
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        let rounding = (o.abs() + (d * t).abs()) * (1.0 / (1u64 << 50) as f64);
+        let pad = lo.abs().max(hi.abs()) * (PAD as f64 * 0.5) - rounding;
+        if hit.cmplt(lo - pad).any() || hit.cmpgt(hi + pad).any() {
+            return None;
+        }
+        within(t, ray)
     }
 }
 

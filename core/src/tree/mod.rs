@@ -89,7 +89,9 @@ impl<B: BoundingVolume> Node<B> {
     #[inline]
     pub const fn children(&self) -> Option<(u32, u32)> {
         if self.count == 0 {
-            Some((self.first, self.first + 1))
+            // Wrapping: a corrupt node (from a file) must not panic here;
+            // validation refuses it.
+            Some((self.first, self.first.wrapping_add(1)))
         } else {
             None
         }

@@ -61,7 +61,7 @@ pub(super) fn structure<B: BoundingVolume>(
                 leaf_slots += node.count as usize;
             }
             Some((l, r)) => {
-                if l <= i || r as usize >= nodes.len() {
+                if l <= i || l as usize >= nodes.len() || r as usize >= nodes.len() {
                     return Err(Error::InvalidTree(
                         "child index out of range or not after its parent",
                     ));
