@@ -724,7 +724,7 @@ mod tests {
             (
                 "huge_ply.ply",
                 b"ply\nformat ascii 1.0\nelement vertex 999999999999\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec(),
-                "the file ends before every element",
+                "line 3: the header announces 999999999999 'vertex' elements, more than the 6 bytes",
             ),
             (
                 "bad_ply_index.ply",
