@@ -138,6 +138,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     }
 
     /// [`from_built`](Self::from_built) for leaves naming ids below `bound`.
+    #[cfg(feature = "insertion")]
     pub(crate) fn from_built_ids(
         nodes: &'a [Node<B>],
         indices: &'a [u32],
