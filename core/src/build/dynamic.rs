@@ -662,10 +662,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             };
             (node.bv, kind)
         })?;
-        let bound = indices[..n]
-            .iter()
-            .max()
-            .map_or(0, |&m| m.saturating_add(1));
+        let bound = crate::tree::index_bound_of(&indices[..n]);
         Ok(Bvh::from_built_ids(
             &nodes[..needed],
             &indices[..n],

@@ -98,6 +98,12 @@ impl<B: BoundingVolume> Node<B> {
     }
 }
 
+/// The largest index in `indices` plus one (0 for none): the shortest
+/// primitive slice a tree with these leaves can be queried with.
+pub(crate) fn index_bound_of(indices: &[u32]) -> u32 {
+    indices.iter().max().map_or(0, |&m| m.saturating_add(1))
+}
+
 /// A built hierarchy, borrowing the caller's node and index storage.
 ///
 /// ```
@@ -163,7 +169,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             nodes,
             indices,
             depth: depth.min(u32::MAX as usize) as u32,
-            bound: indices.iter().max().map_or(0, |&m| m.saturating_add(1)),
+            bound: index_bound_of(indices),
         }
     }
 
@@ -181,7 +187,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             nodes,
             indices,
             depth,
-            bound: indices.iter().max().map_or(0, |&m| m + 1),
+            bound: index_bound_of(indices),
         };
         bvh.validate(prims, seen)?;
         Ok(bvh)
