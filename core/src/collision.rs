@@ -12,7 +12,7 @@
 //!
 //! All storage comes from the caller ([`BroadPhase`]); nothing allocates.
 
-use crate::build::TopDown;
+use crate::builders::TopDown;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::narrow::Intersects;
 use crate::primitive::Primitive;

@@ -48,7 +48,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod build;
+pub mod builders;
 pub mod bv;
 pub mod collision;
 mod error;
@@ -62,7 +62,7 @@ mod stats;
 pub mod transform;
 pub mod tree;
 
-pub use build::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
+pub use builders::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
 #[cfg(feature = "obb")]
 pub use bv::Obb;
 #[cfg(feature = "sphere")]

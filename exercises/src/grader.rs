@@ -566,7 +566,7 @@ pub fn checks() -> Vec<Check> {
             name: "agrees with the library's DynamicTree on random trees",
             points: 3,
             run: |e| {
-                use bvhkit::build::{DynNode, DynamicConfig, DynamicTree, NULL};
+                use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, NULL};
                 let prims = boxes(60, 11, Vec3::ZERO);
                 let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 61 - 1];
                 let handles: Vec<u32> = {
@@ -978,7 +978,7 @@ fn refit_case(e: &dyn Exercises, n: usize, seed: u64) -> (Vec<Node<Aabb>>, Vec<N
     let mut student = t.nodes[..used].to_vec();
     e.refit(&mut student, &t.indices, &moved);
     let mut want = t.nodes[..used].to_vec();
-    if let Err(err) = bvhkit::build::refit_all(&mut want, &t.indices, &moved, 0.0, ()) {
+    if let Err(err) = bvhkit::builders::refit_all(&mut want, &t.indices, &moved, 0.0, ()) {
         panic!("grader refit: {err}");
     }
     (student, want)

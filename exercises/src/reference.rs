@@ -149,7 +149,7 @@ impl Exercises for Reference {
     }
 
     fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]) {
-        if let Err(e) = bvhkit::build::refit_all(nodes, indices, prims, 0.0, ()) {
+        if let Err(e) = bvhkit::builders::refit_all(nodes, indices, prims, 0.0, ()) {
             panic!("the reference refit failed: {e}");
         }
     }

@@ -6,7 +6,7 @@
 //! Before the timings it prints the SAH cost of each tree (C_t = C_i = 1,
 //! AABB areas, relative to the root).
 
-use bvhkit::build::PrimitiveRef;
+use bvhkit::builders::PrimitiveRef;
 use bvhkit::{Aabb, AxisChoice, Node, TopDown, Triangle};
 use bvhkit_std::scene;
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -15,7 +15,7 @@ use std::hint::black_box;
 fn report_quality(tris: &[Triangle]) {
     eprintln!("SAH cost, {} triangles:", tris.len());
     let preset = |name: &str| {
-        bvhkit::build::PRESETS
+        bvhkit::builders::PRESETS
             .iter()
             .find(|p| p.name == name)
             .map(|p| p.builder)

@@ -10,7 +10,7 @@
 //! Run: `cargo bench -p bvhkit-std --bench report` (about fifteen minutes),
 //! or filter, e.g. `cargo bench -p bvhkit-std --bench report -- layout`.
 
-use bvhkit::build::{BottomUp, MergeMetric, Method, PRESETS};
+use bvhkit::builders::{BottomUp, MergeMetric, Method, PRESETS};
 use bvhkit::glam::Vec3;
 use bvhkit::layout::{
     Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,

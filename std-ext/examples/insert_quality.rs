@@ -1,5 +1,5 @@
 //! SAH cost of insertion builds per search, rotation setting and order.
-use bvhkit::build::{DynamicConfig, InsertOrder, Insertion, Rotations, SiblingSearch};
+use bvhkit::builders::{DynamicConfig, InsertOrder, Insertion, Rotations, SiblingSearch};
 use bvhkit::Aabb;
 use bvhkit_std::{scene, OwnedBvh};
 fn main() {

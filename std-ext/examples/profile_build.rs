@@ -1,5 +1,5 @@
 //! Builds the default rock repeatedly (for profilers): `cargo run --release -p bvhkit-std --example profile_build`.
-use bvhkit::{build::PrimitiveRef, Aabb, Node, TopDown};
+use bvhkit::{builders::PrimitiveRef, Aabb, Node, TopDown};
 fn main() {
     let tris = bvhkit_std::scene::rock(6, 1);
     let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];

@@ -19,7 +19,7 @@
 //! ```
 
 use crate::{median_time, scene, tour::Builder};
-use bvhkit::build::{BottomUp, MergeMetric, Method};
+use bvhkit::builders::{BottomUp, MergeMetric, Method};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::layout::{
     Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
@@ -250,7 +250,7 @@ impl BuilderChoice {
         match self {
             BuilderChoice::Sah => Builder::TopDown(TopDown::sah()),
             BuilderChoice::Sah8 => Builder::TopDown(
-                bvhkit::build::PRESETS
+                bvhkit::builders::PRESETS
                     .iter()
                     .find(|p| p.name == "sah-8bins")
                     .map_or(TopDown::sah(), |p| p.builder),

@@ -4,7 +4,7 @@
 //! from the command line.
 
 use crate::OwnedBvh;
-use bvhkit::build::{
+use bvhkit::builders::{
     BottomUp, DynamicConfig, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
 };
 use bvhkit::{BoundingVolume, Primitive, TopDown};

@@ -44,7 +44,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
         let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; builder.index_capacity(prims.len())];
-        let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; prims.len()];
+        let mut cache = vec![bvhkit::builders::PrimitiveRef::EMPTY; prims.len()];
         let (used, depth) = {
             let t = builder.build_cached(prims, &mut nodes, &mut indices, &mut cache)?;
             (t.node_count(), t.depth())
@@ -62,10 +62,10 @@ impl<B: BoundingVolume> OwnedBvh<B> {
 
     /// Builds bottom-up (scratch allocated here and dropped after the build).
     pub fn build_bottom_up<P: Primitive>(
-        builder: &bvhkit::build::BottomUp,
+        builder: &bvhkit::builders::BottomUp,
         prims: &[P],
     ) -> Result<Self, Error> {
-        use bvhkit::build::{BottomUp, BottomUpScratch, Cluster};
+        use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster};
         let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
         let mut clusters = vec![Cluster::<B>::EMPTY; nc];
         let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
@@ -90,10 +90,10 @@ impl<B: BoundingVolume> OwnedBvh<B> {
 
     /// Builds by insertion (dynamic-tree storage allocated here and dropped).
     pub fn build_by_insertion<P: Primitive>(
-        builder: &bvhkit::build::Insertion,
+        builder: &bvhkit::builders::Insertion,
         prims: &[P],
     ) -> Result<Self, Error> {
-        use bvhkit::build::DynNode;
+        use bvhkit::builders::DynNode;
         let n = prims.len();
         let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut order = vec![0u32; n];

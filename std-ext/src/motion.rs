@@ -8,7 +8,7 @@
 //! from the rebuilt one's.
 
 use crate::{median_time, scene, OwnedBvh};
-use bvhkit::build::refit_all;
+use bvhkit::builders::refit_all;
 use bvhkit::glam::{Mat3, Vec3};
 use bvhkit::{overlapping_pairs, Aabb, Descent, Node, TopDown, Triangle};
 use serde::Serialize;

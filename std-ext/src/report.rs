@@ -11,7 +11,7 @@ use crate::layouts::{self, LayoutRow};
 use crate::near_misses::{self, NarrowRow};
 use crate::tour::{self, Builder};
 use crate::{median_time, scene};
-use bvhkit::build::{
+use bvhkit::builders::{
     BottomUp, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
 };
 use bvhkit::glam::Vec3;
@@ -315,7 +315,7 @@ fn builder_rows(
         "insert-bnb".into(),
         Builder::Insertion(Insertion {
             order: InsertOrder::Shuffled(0x5eed),
-            config: bvhkit::build::DynamicConfig {
+            config: bvhkit::builders::DynamicConfig {
                 search: SiblingSearch::BranchAndBound,
                 ..Default::default()
             },

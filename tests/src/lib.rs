@@ -343,10 +343,10 @@ fn reference<R: BoundingVolume>(prims: &[Triangle], r: &R) -> Vec<u32> {
 
 /// Builds bottom-up with Vec storage (and Vec scratch); returns the storage.
 pub fn build_bottom_up<B: BoundingVolume, P: Primitive>(
-    cfg: &bvhkit::build::BottomUp,
+    cfg: &bvhkit::builders::BottomUp,
     prims: &[P],
 ) -> Result<Built<B>, bvhkit::Error> {
-    use bvhkit::build::{BottomUp, BottomUpScratch, Cluster};
+    use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster};
     let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
     let mut clusters = vec![Cluster::<B>::EMPTY; nc];
     let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);

@@ -5,7 +5,7 @@
 //! (Inside the normal test harness other threads allocate, so a global counter
 //! would be unreliable there.)
 
-use bvhkit::build::{
+use bvhkit::builders::{
     refit_all, BottomUp, BottomUpScratch, Cluster, DynNode, DynamicConfig, DynamicTree,
     InsertOrder, Insertion, MergeMetric, Refit, SiblingSearch,
 };
@@ -88,7 +88,7 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         let mut ia = vec![0u32; cfg.index_capacity(a.len())];
         let mut ib = vec![0u32; cfg.index_capacity(b.len())];
         let mut out = vec![(0u32, 0u32); 100_000];
-        let mut cache = vec![bvhkit::build::PrimitiveRef::EMPTY; a.len()];
+        let mut cache = vec![bvhkit::builders::PrimitiveRef::EMPTY; a.len()];
         let mut hits = vec![0u32; 1000];
         let mut queue = vec![0u32; bvhkit::max_nodes(a.len())];
         let mut objects_scratch = (

@@ -1,7 +1,7 @@
 //! Bottom-up builders (exhaustive and PLOC) against brute force, for every
 //! volume type, plus their pitfalls.
 
-use bvhkit::build::{BottomUp, MergeMetric, Method};
+use bvhkit::builders::{BottomUp, MergeMetric, Method};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Exact, Obb, PairTraversal, Pairs,
@@ -223,7 +223,7 @@ fn bad_input_and_small_buffers_are_errors() {
     let tris = [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y); 4];
     assert!(build_bottom_up::<Aabb, _>(&bad_radius, &tris).is_err());
     // Scratch too small.
-    use bvhkit::build::{BottomUpScratch, Cluster};
+    use bvhkit::builders::{BottomUpScratch, Cluster};
     let mut clusters = vec![Cluster::<Aabb>::EMPTY; 3];
     let (mut work, mut keys) = (vec![0u32; 8], vec![0u64; 4]);
     let mut scratch = BottomUpScratch {

@@ -3,7 +3,7 @@
 //! nothing and no error, including a pair query of an empty tree against a
 //! full one, the collision system with empty objects, refits and validation.
 
-use bvhkit::build::{
+use bvhkit::builders::{
     refit_all, BottomUp, DynNode, DynamicConfig, DynamicTree, Insertion, MergeMetric, Method,
     Refit, PRESETS,
 };
@@ -196,7 +196,7 @@ fn every_builder_builds_the_empty_tree() {
     for insertion in [
         Insertion::default(),
         Insertion {
-            order: bvhkit::build::InsertOrder::Sorted,
+            order: bvhkit::builders::InsertOrder::Sorted,
             ..Insertion::default()
         },
     ] {

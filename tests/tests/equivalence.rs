@@ -119,7 +119,7 @@ proptest! {
     /// tree must be the same, node for node.
     #[test]
     fn cached_build_makes_the_same_tree(cfg in any_top_down(), a in scene(80)) {
-        use bvhkit::{build::PrimitiveRef, Node, Sphere};
+        use bvhkit::{builders::PrimitiveRef, Node, Sphere};
         let mut n1 = vec![Node::<Sphere>::EMPTY; bvhkit::max_nodes(a.len())];
         let mut n2 = n1.clone();
         let mut i1 = vec![0u32; cfg.index_capacity(a.len())];

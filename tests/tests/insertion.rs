@@ -1,7 +1,7 @@
 //! Insertion construction and the dynamic tree: random insert / remove /
 //! move sequences keep the invariants and the answers, for every volume type.
 
-use bvhkit::build::{
+use bvhkit::builders::{
     DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch,
 };
 use bvhkit::glam::Vec3;

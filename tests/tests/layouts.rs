@@ -324,7 +324,7 @@ proptest! {
         b in scene(40),
         probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
     ) {
-        use bvhkit::build::{BottomUp, MergeMetric, Method};
+        use bvhkit::builders::{BottomUp, MergeMetric, Method};
         let cfg = BottomUp { method: Method::Ploc { radius: 2 }, metric: MergeMetric::SurfaceArea };
         let (na, ia, _) = build_bottom_up::<Aabb, _>(&cfg, &a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
         let (nb, ib, _) = build_bottom_up::<Aabb, _>(&cfg, &b).map_err(|e| TestCaseError::fail(format!("{e}")))?;

@@ -319,7 +319,7 @@ fn leaves_keep_their_size_when_a_criterion_peels_primitives() {
     let tris: Vec<Triangle> = (0..5000)
         .map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3))
         .collect();
-    for p in bvhkit::build::PRESETS {
+    for p in bvhkit::builders::PRESETS {
         for leaf in [1, 4] {
             let cfg = p.builder.with_max_leaf_size(leaf);
             let (nodes, idx, depth) = build::<Aabb, _>(&cfg, &tris).unwrap();

@@ -2,7 +2,7 @@
 //! trees, random subsets of primitives moved by random amounts, incremental
 //! and full refits, with and without a margin, for every volume type.
 
-use bvhkit::build::{refit_all, Refit};
+use bvhkit::builders::{refit_all, Refit};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, Aabb, BoundingVolume, Bounds, Counts, Dop14, Error, Obb, Same, Sphere, TopDown,

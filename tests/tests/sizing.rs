@@ -3,7 +3,7 @@
 //! storage builds the same trees, and pair queries answer alike on both sides
 //! of the depth where the small pair stack hands over to the large one.
 
-use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, DynNode, Insertion};
+use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, DynNode, Insertion};
 use bvhkit::glam::Vec3;
 use bvhkit::layout::{QuantizedWide, Wide};
 use bvhkit::query::{pair_stack_bound, PAIR_STACK, SMALL_PAIR_STACK};

@@ -8,7 +8,7 @@
 //! rays test the triangles through the same indices.
 
 use crate::common::{sah, time, Measured, PairSum, RayHit, Runs, Scene, Timing};
-use bvhkit::build::{BottomUp, Method};
+use bvhkit::builders::{BottomUp, Method};
 use bvhkit::layout::{QuantNode, QuantizedWide, Wide, WideNode};
 use bvhkit::{Aabb, Bvh, Hierarchy, Pairs, Query, RayOrder, TopDown};
 use bvhkit_std::OwnedBvh;

@@ -34,7 +34,7 @@ pub use quantized::{QuantNode, QuantizedWide};
 pub use trinode::{TriNode, TriNodes};
 pub use wide::{Wide, WideNode};
 
-use crate::build::enclose;
+use crate::builders::enclose;
 use crate::bv::BoundingVolume;
 use crate::query::stack::Stack;
 use crate::tree::hierarchy::DFS_STACK;

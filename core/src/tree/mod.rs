@@ -127,7 +127,7 @@ pub struct Bvh<'a, B> {
     depth: u32,
     /// The largest primitive index a leaf names, plus one: the shortest
     /// primitive slice a query can take. Builders number primitives `0..n`
-    /// (so it is `n`); a [`DynamicTree`](crate::build::DynamicTree) after
+    /// (so it is `n`); a [`DynamicTree`](crate::builders::DynamicTree) after
     /// removals names the caller's ids, which can leave gaps.
     bound: u32,
 }
@@ -163,7 +163,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     /// [`from_parts`](Self::from_parts), which validates: a query over
     /// inconsistent raw parts may index out of bounds. Reads the indices
     /// once for the largest (a tree written by a
-    /// [`DynamicTree`](crate::build::DynamicTree) names ids with gaps).
+    /// [`DynamicTree`](crate::builders::DynamicTree) names ids with gaps).
     pub fn from_raw_parts(nodes: &'a [Node<B>], indices: &'a [u32], depth: usize) -> Self {
         Bvh {
             nodes,
@@ -245,7 +245,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     /// The shortest primitive slice a query takes: the largest index a leaf
     /// names, plus one. It equals [`primitive_count`](Self::primitive_count)
     /// for every builder, whose leaves name `0..n`; a
-    /// [`DynamicTree`](crate::build::DynamicTree) after removals writes a
+    /// [`DynamicTree`](crate::builders::DynamicTree) after removals writes a
     /// tree whose leaves name the caller's ids, and its queries take the
     /// caller's whole slice, indexed by id.
     #[inline]

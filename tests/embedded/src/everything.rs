@@ -4,7 +4,7 @@
 
 use core::ptr::addr_of_mut;
 
-use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, DynNode, Insertion};
+use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, DynNode, Insertion};
 use bvhkit::layout::{QuantNode, QuantizedWide};
 use bvhkit::{
     max_nodes, Aabb, Bvh, Descent, Dop14, Node, Obb, PairTraversal, Pairs, RayOrder, TopDown,

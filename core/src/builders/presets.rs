@@ -27,7 +27,7 @@ const fn with(partition: Partition, axis: AxisChoice, split: SplitPoint) -> TopD
 /// Every top-down strategy of the lectures, by name.
 ///
 /// ```
-/// let p = bvhkit::build::PRESETS.iter().find(|p| p.name == "median").unwrap();
+/// let p = bvhkit::builders::PRESETS.iter().find(|p| p.name == "median").unwrap();
 /// assert_eq!(p.builder, bvhkit::TopDown::median());
 /// ```
 pub const PRESETS: [Preset; 15] = [

@@ -114,7 +114,7 @@ impl Default for DynamicConfig {
 /// A tree built by insertion, with removal and updates, in caller storage.
 ///
 /// ```
-/// use bvhkit::build::{DynNode, DynamicConfig, DynamicTree};
+/// use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree};
 /// use bvhkit::{Aabb, Node};
 /// use glam::Vec3;
 /// let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 100 - 1];
@@ -689,7 +689,7 @@ pub enum InsertOrder {
 /// (in the chosen [`InsertOrder`]), then written in the query layout.
 ///
 /// ```
-/// use bvhkit::build::{DynNode, Insertion};
+/// use bvhkit::builders::{DynNode, Insertion};
 /// use bvhkit::{Aabb, Node, Triangle};
 /// use glam::Vec3;
 /// let tris: Vec<Triangle> = (0..50).map(|i| {
@@ -727,7 +727,7 @@ impl Insertion {
     /// the output tree). A `const fn`, to size `static` buffers:
     ///
     /// ```
-    /// use bvhkit::build::{DynNode, Insertion};
+    /// use bvhkit::builders::{DynNode, Insertion};
     /// use bvhkit::Aabb;
     /// const STORAGE: usize = Insertion::scratch_len(64).0;
     /// static STORAGE_NODES: [DynNode<Aabb>; STORAGE] = [DynNode::EMPTY; STORAGE];

@@ -78,7 +78,7 @@ pub struct BottomUpScratch<'s, B> {
 /// A bottom-up builder.
 ///
 /// ```
-/// use bvhkit::build::{BottomUp, BottomUpScratch, Cluster, Method, MergeMetric};
+/// use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, Method, MergeMetric};
 /// use bvhkit::{Aabb, Node, Triangle};
 /// use glam::Vec3;
 /// let tris: Vec<Triangle> = (0..100).map(|i| {

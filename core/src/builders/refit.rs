@@ -91,7 +91,7 @@ fn check_layout<B: BoundingVolume>(nodes: &[Node<B>], indices: &[u32]) -> Result
 /// (moved) `prims`, leaves grown by `margin`; counts each node as an update.
 ///
 /// ```
-/// use bvhkit::build::refit_all;
+/// use bvhkit::builders::refit_all;
 /// use bvhkit::{Aabb, Node, TopDown, Triangle};
 /// use glam::Vec3;
 /// let mut tris: Vec<Triangle> = (0..8).map(|i| {
@@ -156,7 +156,7 @@ fn check_inputs<B: BoundingVolume, P: Primitive>(
 /// words).
 ///
 /// ```
-/// use bvhkit::build::{refit_all, Refit};
+/// use bvhkit::builders::{refit_all, Refit};
 /// use bvhkit::{Aabb, Counts, Node, TopDown, Triangle};
 /// use glam::Vec3;
 /// let mut tris: Vec<Triangle> = (0..64).map(|i| {

@@ -1,0 +1,548 @@
+//! The top-down builder: one shared skeleton, pluggable split evaluation.
+//!
+//! Skeleton (Ericson 6.2.1), written with an explicit stack so it is safe on a
+//! small thread or interrupt stack:
+//!
+//! 1. bound the node's primitives;
+//! 2. stop if a [`Stop`] criterion holds;
+//! 3. otherwise evaluate candidate splits (axis x split point, scored by the
+//!    [`Partition`] criterion), partition the index range in place, and
+//!    continue with both halves.
+//!
+//! The smaller half is processed next and the larger one pushed, so the stack
+//! never holds more than `log2(n) + 1` entries. The default configuration
+//! (binned SAH over x, y and z) has a dedicated single-pass binning loop; every
+//! other combination goes through the general evaluator, which is compiled
+//! only with the `strategies` cargo feature (on by default): without it, the
+//! builder keeps the binned-SAH fast path and the object-median fallback,
+//! about a third of the code, for firmware that wants small flash.
+// Without `strategies`, the general evaluator is compiled but unreachable.
+#![cfg_attr(not(feature = "strategies"), allow(dead_code))]
+
+mod axes;
+mod binned;
+mod criteria;
+mod partition;
+mod source;
+mod split_points;
+mod stop;
+
+pub use source::PrimitiveRef;
+
+use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::{validate, Primitive};
+use crate::tree::{max_nodes, Bvh, Node, MAX_DEPTH};
+use crate::Error;
+use partition::bounds_of;
+use source::{Cached, Indexed, Source, SourceBoxes};
+
+/// A top-down builder: a plain configuration value; [`build`](Self::build) does the work.
+///
+/// ```
+/// use bvhkit::{Aabb, Node, TopDown, Triangle, Partition, SplitPoint, AxisChoice};
+/// use glam::Vec3;
+/// let tris: Vec<Triangle> = (0..100)
+///     .map(|i| Triangle::new(Vec3::new(i as f32, 0.0, 0.0), Vec3::new(i as f32, 1.0, 0.0), Vec3::new(i as f32, 0.0, 1.0)))
+///     .collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+/// let mut indices = vec![0u32; tris.len()];
+/// // Median cut along the axis of greatest variance, two primitives per leaf.
+/// let builder = TopDown {
+///     partition: Partition::Balance,
+///     axis: AxisChoice::Variance,
+///     split: SplitPoint::ObjectMedian,
+///     ..TopDown::default()
+/// }
+/// .with_max_leaf_size(2);
+/// let bvh = builder.build(&tris, &mut nodes, &mut indices)?;
+/// assert_eq!(bvh.depth(), 6); // 100 -> 50 -> 25 -> 13 -> 7 -> 4 -> 2
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TopDown {
+    /// What a split minimises.
+    pub partition: Partition,
+    /// Which axes splits are tried along.
+    pub axis: AxisChoice,
+    /// Where candidate planes are placed.
+    pub split: SplitPoint,
+    /// When to make a leaf.
+    pub stop: Stop,
+    /// What to do when no criterion separates a node.
+    pub on_failure: OnFailure,
+}
+
+impl Default for TopDown {
+    /// Binned SAH ([`TopDown::sah`]).
+    fn default() -> Self {
+        TopDown::sah()
+    }
+}
+
+/// One node waiting to be processed: its index range and known bounds.
+#[derive(Clone, Copy, Debug)]
+struct Task {
+    node: u32,
+    start: u32,
+    end: u32,
+    depth: u32,
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+/// Result of partitioning a range: the split position and both halves' bounds.
+#[derive(Clone, Copy, Debug)]
+struct Halves {
+    mid: usize,
+    bounds: [Aabb; 2],
+    centroids: [Aabb; 2],
+}
+
+impl TopDown {
+    /// Binned SAH over x, y and z with 16 bins: the fast, high-quality default.
+    pub const fn sah() -> Self {
+        TopDown {
+            partition: Partition::SurfaceArea,
+            axis: AxisChoice::BestOfXyz,
+            split: SplitPoint::Bins(16),
+            stop: Stop {
+                max_leaf_size: 4,
+                min_volume: 0.0,
+                max_depth: MAX_DEPTH as u32,
+            },
+            on_failure: OnFailure::ForceSplit,
+        }
+    }
+
+    /// SAH evaluated at every centroid (the exact sweep): the best SAH trees
+    /// this builder makes, `O(n log^2 n)`.
+    pub const fn sah_sweep() -> Self {
+        TopDown {
+            split: SplitPoint::Sweep,
+            ..TopDown::sah()
+        }
+    }
+
+    /// The classic median cut: equal halves along the longest axis.
+    pub const fn median() -> Self {
+        TopDown {
+            partition: Partition::Balance,
+            axis: AxisChoice::Longest,
+            split: SplitPoint::ObjectMedian,
+            ..TopDown::sah()
+        }
+    }
+
+    /// The same configuration with another leaf size.
+    pub const fn with_max_leaf_size(mut self, k: u32) -> Self {
+        self.stop.max_leaf_size = k;
+        self
+    }
+
+    /// Index-buffer entries a build over `n` primitives needs: `n`, or `2n` for
+    /// [`SplitPoint::Sweep`], which keeps per-node scratch in the second half.
+    pub const fn index_capacity(&self, n: usize) -> usize {
+        match self.split {
+            SplitPoint::Sweep => 2 * n,
+            _ => n,
+        }
+    }
+
+    /// Bytes of caller memory a build over `n` primitives needs with volume
+    /// `B`: nodes plus indices. A `const fn`, so firmware can check a budget
+    /// at compile time:
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, TopDown};
+    /// const BYTES: usize = TopDown::sah().bytes_needed::<Aabb>(256);
+    /// assert_eq!(BYTES, 511 * 32 + 256 * 4);
+    /// ```
+    pub const fn bytes_needed<B: BoundingVolume>(&self, n: usize) -> usize {
+        max_nodes(n) * core::mem::size_of::<Node<B>>() + self.index_capacity(n) * 4
+    }
+
+    /// Whether this configuration takes the binned-SAH fast path only, the
+    /// one a build without the `strategies` feature supports: `Bins(k)`,
+    /// `SurfaceArea`, and x/y/z or the longest axis.
+    pub const fn is_binned_sah(&self) -> bool {
+        matches!(
+            (self.split, self.axis, self.partition),
+            (
+                SplitPoint::Bins(_),
+                AxisChoice::BestOfXyz | AxisChoice::Longest,
+                Partition::SurfaceArea
+            )
+        )
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        if !cfg!(feature = "strategies") && !self.is_binned_sah() {
+            return Err(Error::InvalidConfig(
+                "only binned SAH (Bins, SurfaceArea, BestOfXyz or Longest) is compiled: \
+                 enable bvhkit's `strategies` feature for the others",
+            ));
+        }
+        if self.stop.max_leaf_size == 0 {
+            return Err(Error::InvalidConfig("max_leaf_size must be at least 1"));
+        }
+        if self.stop.max_depth as usize > MAX_DEPTH {
+            return Err(Error::InvalidConfig(
+                "max_depth must be at most MAX_DEPTH (64)",
+            ));
+        }
+        if self.stop.min_volume.is_nan() || self.stop.min_volume < 0.0 {
+            return Err(Error::InvalidConfig(
+                "min_volume must be a non-negative number",
+            ));
+        }
+        match self.split {
+            SplitPoint::Bins(k) if !(2..=MAX_BINS as u8).contains(&k) => {
+                return Err(Error::InvalidConfig("bin count must be in 2..=MAX_BINS"))
+            }
+            SplitPoint::RandomCentroids { count, .. } if !(1..MAX_BINS as u8).contains(&count) => {
+                return Err(Error::InvalidConfig(
+                    "random candidate count must be in 1..MAX_BINS",
+                ))
+            }
+            SplitPoint::Sweep if self.partition != Partition::SurfaceArea => {
+                return Err(Error::InvalidConfig(
+                    "the sweep split point evaluates the SurfaceArea criterion only",
+                ))
+            }
+            _ => {}
+        }
+        if let Partition::Weighted {
+            surface_area,
+            volume,
+            overlap,
+            balance,
+        } = self.partition
+        {
+            if ![surface_area, volume, overlap, balance]
+                .iter()
+                .all(|w| w.is_finite() && *w >= 0.0)
+            {
+                return Err(Error::InvalidConfig(
+                    "weights must be finite and non-negative",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds a tree over `prims` into the caller's storage, with the least
+    /// memory: `nodes` (up to [`max_nodes`]`(n)` entries; running out is an
+    /// [`Error::NodeCapacity`]) and `indices`
+    /// ([`index_capacity`](Self::index_capacity)`(n)` entries). No allocation.
+    ///
+    /// Each pass reads primitives through the permuted index array, i.e. in
+    /// random order. When memory allows, [`build_cached`](Self::build_cached)
+    /// is several times faster on large inputs.
+    pub fn build<'a, P: Primitive, B: BoundingVolume>(
+        &self,
+        prims: &[P],
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+    ) -> Result<Bvh<'a, B>, Error> {
+        let n = self.prepare(prims, nodes.len(), indices.len())?;
+        let (idx, scratch) = indices.split_at_mut(n);
+        for (i, slot) in idx.iter_mut().enumerate() {
+            *slot = i as u32;
+        }
+        let src = Indexed(prims);
+        let (used, depth) = self.run(&src, nodes, idx, scratch)?;
+        refit_to_contain_children(&mut nodes[..used]);
+        let nodes: &'a [Node<B>] = nodes;
+        let idx: &'a [u32] = idx;
+        Ok(Bvh::from_built(&nodes[..used], idx, depth))
+    }
+
+    /// Builds like [`build`](Self::build), but first copies every primitive's
+    /// bounds into `cache` (`n` entries, 28 bytes each) and partitions those
+    /// records instead of indices: every pass then reads memory in order. The
+    /// tree is identical to the one [`build`](Self::build) makes.
+    ///
+    /// ```
+    /// use bvhkit::{builders::PrimitiveRef, Aabb, Node, TopDown, Triangle};
+    /// use glam::Vec3;
+    /// let tris: Vec<Triangle> = (0..1000).map(|i| {
+    ///     let o = Vec3::new((i % 10) as f32, (i / 10 % 10) as f32, (i / 100) as f32);
+    ///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+    /// }).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+    /// let mut idx = vec![0u32; tris.len()];
+    /// let mut cache = vec![PrimitiveRef::EMPTY; tris.len()];
+    /// let fast = TopDown::sah().build_cached(&tris, &mut nodes, &mut idx, &mut cache)?.stats();
+    /// let mut nodes2 = nodes.clone();
+    /// let slow = TopDown::sah().build(&tris, &mut nodes2, &mut idx)?.stats();
+    /// assert_eq!(fast, slow);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn build_cached<'a, P: Primitive, B: BoundingVolume>(
+        &self,
+        prims: &[P],
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+        cache: &mut [PrimitiveRef],
+    ) -> Result<Bvh<'a, B>, Error> {
+        let n = self.prepare(prims, nodes.len(), indices.len())?;
+        if cache.len() < n {
+            return Err(Error::IndexCapacity {
+                needed: n,
+                available: cache.len(),
+            });
+        }
+        let items = &mut cache[..n];
+        for (i, (slot, p)) in items.iter_mut().zip(prims).enumerate() {
+            *slot = PrimitiveRef {
+                bounds: p.bounds(),
+                index: i as u32,
+            };
+        }
+        // The index array is free until the end: it serves as sweep scratch.
+        let (used, depth) = self.run(&Cached, nodes, items, indices)?;
+        for (slot, item) in indices.iter_mut().zip(items.iter()) {
+            *slot = item.index;
+        }
+        // Leaves of a cached build point into `items`, which has the same order.
+        refit_to_contain_children(&mut nodes[..used]);
+        let nodes: &'a [Node<B>] = nodes;
+        let idx: &'a [u32] = indices;
+        Ok(Bvh::from_built(&nodes[..used], &idx[..n], depth))
+    }
+
+    /// Shared input checks; returns n.
+    fn prepare<P: Primitive>(
+        &self,
+        prims: &[P],
+        nodes: usize,
+        indices: usize,
+    ) -> Result<usize, Error> {
+        self.check()?;
+        validate(prims)?;
+        let n = prims.len();
+        let needed = self.index_capacity(n);
+        if indices < needed {
+            return Err(Error::IndexCapacity {
+                needed,
+                available: indices,
+            });
+        }
+        if nodes == 0 && n > 0 {
+            return Err(Error::NodeCapacity {
+                needed: max_nodes(n),
+                available: 0,
+            });
+        }
+        Ok(n)
+    }
+
+    /// The skeleton: returns (nodes used, depth).
+    fn run<S: Source, B: BoundingVolume>(
+        &self,
+        src: &S,
+        nodes: &mut [Node<B>],
+        idx: &mut [S::Item],
+        scratch: &mut [u32],
+    ) -> Result<(usize, u32), Error> {
+        if idx.is_empty() {
+            return Ok((0, 0)); // the empty tree: no nodes at all
+        }
+        let (bounds, centroids) = bounds_of(src, idx);
+        const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
+        let mut stack = [Task {
+            node: 0,
+            start: 0,
+            end: 0,
+            depth: 0,
+            bounds: Aabb::EMPTY,
+            centroids: Aabb::EMPTY,
+        }; STACK];
+        let mut top = 0;
+        let mut used = 1usize;
+        let mut max_depth = 0u32;
+        let mut task = Task {
+            node: 0,
+            start: 0,
+            end: idx.len() as u32,
+            depth: 0,
+            bounds,
+            centroids,
+        };
+        loop {
+            let (s, e) = (task.start as usize, task.end as usize);
+            let range = &mut idx[s..e];
+            let bv = B::fit_boxes(&SourceBoxes { src, items: range }, &task.bounds);
+            let count = (e - s) as u32;
+            let stop = count <= self.stop.max_leaf_size
+                || task.depth >= self.stop.max_depth
+                || (self.stop.min_volume > 0.0 && bv.volume() < self.stop.min_volume);
+            let halves = if stop {
+                None
+            } else {
+                let m = range.len().min(scratch.len());
+                self.split(src, range, &mut scratch[..m], &task, &bv)
+            };
+            match halves {
+                None => {
+                    nodes[task.node as usize] = Node {
+                        bv,
+                        first: task.start,
+                        count,
+                    };
+                    max_depth = max_depth.max(task.depth);
+                    if top == 0 {
+                        break;
+                    }
+                    top -= 1;
+                    task = stack[top];
+                }
+                Some(h) => {
+                    if used + 2 > nodes.len() {
+                        return Err(Error::NodeCapacity {
+                            needed: max_nodes(idx.len()),
+                            available: nodes.len(),
+                        });
+                    }
+                    let left = used as u32;
+                    used += 2;
+                    nodes[task.node as usize] = Node {
+                        bv,
+                        first: left,
+                        count: 0,
+                    };
+                    let mid = (s + h.mid) as u32;
+                    let child = |i: usize, start: u32, end: u32| Task {
+                        node: left + i as u32,
+                        start,
+                        end,
+                        depth: task.depth + 1,
+                        bounds: h.bounds[i],
+                        centroids: h.centroids[i],
+                    };
+                    let l = child(0, task.start, mid);
+                    let r = child(1, mid, task.end);
+                    // Defer the larger half and continue with the smaller one (as
+                    // quicksort recurses on the smaller side): everything pushed
+                    // before the deferred half is popped lies inside a range at
+                    // most half as large, so the stack stays below log2(n) + 1.
+                    let (next, later) = if l.end - l.start <= r.end - r.start {
+                        (l, r)
+                    } else {
+                        (r, l)
+                    };
+                    if top == STACK {
+                        return Err(Error::StackOverflow {
+                            depth: top,
+                            capacity: STACK,
+                        });
+                    }
+                    stack[top] = later;
+                    top += 1;
+                    task = next;
+                }
+            }
+        }
+        Ok((used, max_depth))
+    }
+}
+
+/// Makes every parent contain its children's volumes. AABBs and k-DOPs fitted
+/// top-down already do; a sphere or OBB fitted to a superset may not contain a
+/// child fitted to a subset, so it is enlarged (or replaced by the children's
+/// merge when that is smaller). Children always follow their parent in the
+/// array, so one reverse sweep sees children before parents.
+fn refit_to_contain_children<B: BoundingVolume>(nodes: &mut [Node<B>]) {
+    for i in (0..nodes.len()).rev() {
+        if let Some((l, r)) = nodes[i].children() {
+            let (lb, rb) = (nodes[l as usize].bv, nodes[r as usize].bv);
+            let bv = nodes[i].bv;
+            if bv.contains(&lb) && bv.contains(&rb) {
+                continue;
+            }
+            let enlarged = bv.merge(&lb).merge(&rb);
+            let merged = lb.merge(&rb);
+            let mut pick = if merged.volume() < enlarged.volume() {
+                merged
+            } else {
+                enlarged
+            };
+            // Merges are conservative but a rounding step may still leave a hair
+            // outside; fall back to merging again until containment holds.
+            for _ in 0..4 {
+                if pick.contains(&lb) && pick.contains(&rb) {
+                    break;
+                }
+                pick = pick.merge(&lb).merge(&rb);
+            }
+            nodes[i].bv = pick;
+        }
+    }
+}
+
+#[cfg(test)]
+mod feature_tests {
+    use super::*;
+    use crate::Triangle;
+    use glam::Vec3;
+
+    fn tris() -> [Triangle; 40] {
+        core::array::from_fn(|i| {
+            let o = Vec3::new((i % 8) as f32, (i / 8) as f32, 0.0);
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+    }
+
+    /// Binned SAH builds in every feature set, with any bin count or axis.
+    #[test]
+    fn binned_sah_builds_with_and_without_strategies() {
+        let prims = tris();
+        for cfg in [
+            TopDown::sah(),
+            TopDown {
+                split: SplitPoint::Bins(8),
+                ..TopDown::sah()
+            },
+            TopDown {
+                axis: AxisChoice::Longest,
+                ..TopDown::sah()
+            },
+        ] {
+            assert!(cfg.is_binned_sah());
+            let mut nodes = [Node::<Aabb>::ZERO; 79];
+            let mut idx = [0u32; 40];
+            let t = cfg.build(&prims, &mut nodes, &mut idx).unwrap();
+            assert_eq!(t.primitive_count(), 40);
+        }
+    }
+
+    /// Other configurations build only with `strategies`; without it they
+    /// are a clear error, never a silently different tree.
+    #[test]
+    fn other_strategies_need_the_feature() {
+        let prims = tris();
+        for cfg in [
+            TopDown::median(),
+            TopDown::sah_sweep(),
+            TopDown {
+                axis: AxisChoice::X,
+                ..TopDown::sah()
+            },
+            TopDown {
+                partition: Partition::Volume,
+                ..TopDown::sah()
+            },
+        ] {
+            assert!(!cfg.is_binned_sah());
+            let mut nodes = [Node::<Aabb>::ZERO; 79];
+            let mut idx = [0u32; 80];
+            let r = cfg.build(&prims, &mut nodes, &mut idx);
+            if cfg!(feature = "strategies") {
+                assert_eq!(r.unwrap().primitive_count(), 40);
+            } else {
+                assert!(matches!(r, Err(Error::InvalidConfig(_))), "{cfg:?}");
+            }
+        }
+    }
+}
