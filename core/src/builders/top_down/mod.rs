@@ -259,7 +259,7 @@ impl TopDown {
     }
 
     /// Builds like [`build`](Self::build), but first copies every primitive's
-    /// bounds into `cache` (`n` entries, 28 bytes each) and partitions those
+    /// bounds into `cache` (`n` entries, 32 bytes each) and partitions those
     /// records instead of indices: every pass then reads memory in order. The
     /// tree is identical to the one [`build`](Self::build) makes.
     ///
@@ -295,15 +295,12 @@ impl TopDown {
         }
         let items = &mut cache[..n];
         for (i, (slot, p)) in items.iter_mut().zip(prims).enumerate() {
-            *slot = PrimitiveRef {
-                bounds: p.bounds(),
-                index: i as u32,
-            };
+            *slot = PrimitiveRef::new(&p.bounds(), i as u32);
         }
         // The index array is free until the end: it serves as sweep scratch.
         let (used, depth) = self.run(&Cached, nodes, items, indices)?;
         for (slot, item) in indices.iter_mut().zip(items.iter()) {
-            *slot = item.index;
+            *slot = item.index();
         }
         // Leaves of a cached build point into `items`, which has the same order.
         refit_to_contain_children(&mut nodes[..used]);

@@ -88,8 +88,8 @@ pub(super) fn partition_known<S: Source>(
     let mut j = 0;
     for i in 0..range.len() {
         let item = range[i];
-        let b = src.bounds(item);
-        let c = Vec3A::from(b.min) * 0.5 + Vec3A::from(b.max) * 0.5;
+        let (lo, hi) = src.lanes(item);
+        let c = lo * 0.5 + hi * 0.5;
         let left = goes_left(c[axis]);
         let m = BVec3A::splat(left);
         // Same operand order as `Aabb::grow`.
