@@ -264,3 +264,137 @@ fn exhaustive_merges_the_smallest_pair_first() {
     assert_eq!(t.leaf_primitives(&t.nodes()[far_side as usize]), &[2]);
     assert_eq!(leaf_sides.iter().filter(|x| **x).count(), 1);
 }
+
+/// PLOC written the plain way: a comparison sort of (Morton code, index),
+/// every pair cost computed from both sides, ties as documented. The
+/// builder caches pair costs and radix-sorts; its trees must be the same.
+fn plain_ploc(boxes: &[Aabb], radius: usize) -> String {
+    fn spread(v: u32) -> u32 {
+        let mut v = v & 0x3ff;
+        v = (v | (v << 16)) & 0x030000ff;
+        v = (v | (v << 8)) & 0x0300f00f;
+        v = (v | (v << 4)) & 0x030c30c3;
+        (v | (v << 2)) & 0x09249249
+    }
+    let n = boxes.len();
+    let scene = boxes.iter().fold(Aabb::EMPTY, |s, b| s.union(b));
+    let scale = 1.0 / scene.extent().max_element();
+    let mut centres = Aabb::EMPTY;
+    for b in boxes {
+        centres.grow(b.center());
+    }
+    let ext = centres.extent();
+    let mut keys: Vec<u64> = (0..n)
+        .map(|i| {
+            let c = boxes[i].center();
+            let q: [u32; 3] = core::array::from_fn(|k| {
+                let t = if ext[k] > 0.0 {
+                    (c[k] - centres.min[k]) / ext[k]
+                } else {
+                    0.0
+                };
+                (t.clamp(0.0, 1.0) * 1023.0) as u32
+            });
+            let code = spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2;
+            (code as u64) << 32 | i as u64
+        })
+        .collect();
+    keys.sort();
+    // (box, text of the subtree)
+    let mut active: Vec<(Aabb, String)> = keys
+        .iter()
+        .map(|&k| (boxes[k as u32 as usize], (k as u32).to_string()))
+        .collect();
+    let tie = |i: usize, j: usize, cur: usize| {
+        cur == i || {
+            let (dj, dc) = (i.abs_diff(j), i.abs_diff(cur));
+            dj < dc || (dj == dc && j == i ^ 1)
+        }
+    };
+    while active.len() > 1 {
+        let k = active.len();
+        let nearest: Vec<usize> = (0..k)
+            .map(|i| {
+                let (mut best, mut partner) = (f32::INFINITY, i);
+                for j in i.saturating_sub(radius)..(i + radius + 1).min(k) {
+                    if j == i {
+                        continue;
+                    }
+                    let c = BoundingVolume::surface_area_scaled(
+                        &active[i].0.union(&active[j].0),
+                        scale,
+                    );
+                    if c < best || (c == best && tie(i, j, partner)) {
+                        (best, partner) = (c, j);
+                    }
+                }
+                partner
+            })
+            .collect();
+        let mut next = Vec::new();
+        let mut gone = vec![false; k];
+        for i in 0..k {
+            let j = nearest[i];
+            if gone[i] {
+                continue;
+            }
+            if j > i && nearest[j] == i {
+                gone[j] = true;
+                let b = active[i].0.union(&active[j].0);
+                next.push((b, format!("({},{})", active[i].1, active[j].1)));
+            } else {
+                next.push(active[i].clone());
+            }
+        }
+        assert!(next.len() < k, "the plain PLOC always merges a pair");
+        active = next;
+    }
+    active.pop().map(|(_, s)| s).unwrap_or_default()
+}
+
+/// The same text for a built tree: a leaf is its primitive, an inner node
+/// `(left,right)`.
+fn shape(nodes: &[bvhkit::Node<Aabb>], indices: &[u32], at: usize) -> String {
+    let node = &nodes[at];
+    match node.children() {
+        Some((l, r)) => format!(
+            "({},{})",
+            shape(nodes, indices, l as usize),
+            shape(nodes, indices, r as usize)
+        ),
+        None => indices[node.first as usize].to_string(),
+    }
+}
+
+#[test]
+fn ploc_equals_the_plain_algorithm() {
+    // A rock (curved, no ties) and a grid (many equal costs): every radius
+    // the cost cache holds, and wider ones, which recompute.
+    let mut scenes = vec![bvhkit_std::scene::rock(2, 7)];
+    scenes.push(
+        (0..300)
+            .map(|i| {
+                let o = Vec3::new((i % 17) as f32, (i / 17) as f32, 0.0);
+                Triangle::new(o, o + Vec3::X * 0.5, o + Vec3::Y * 0.5)
+            })
+            .collect(),
+    );
+    for tris in &scenes {
+        let boxes: Vec<Aabb> = tris.iter().map(bvhkit::Primitive::bounds).collect();
+        for radius in [1, 2, 5, 16, 17, 40] {
+            let cfg = BottomUp {
+                method: Method::Ploc {
+                    radius: radius as u32,
+                },
+                metric: MergeMetric::SurfaceArea,
+            };
+            let (nodes, indices, _) = build_bottom_up::<Aabb, _>(&cfg, &boxes).unwrap();
+            assert_eq!(
+                shape(&nodes, &indices, 0),
+                plain_ploc(&boxes, radius),
+                "radius {radius}, {} primitives",
+                boxes.len()
+            );
+        }
+    }
+}

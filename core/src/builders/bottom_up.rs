@@ -409,26 +409,71 @@ fn ploc<B: BoundingVolume, P: Primitive>(
             };
             q[k] = (t.clamp(0.0, 1.0) * 1023.0) as u32;
         }
-        keys[i] = ((morton3(q[0], q[1], q[2]) as u64) << 32) | i as u64;
+        keys[i] = morton3(q[0], q[1], q[2]) as u64;
     }
-    keys.sort_unstable();
-    for (a, &key) in active.iter_mut().zip(keys.iter()) {
-        *a = key as u32;
+    // Curve order, ties by index: a stable radix sort of the indices (which
+    // start in index order) by their 30-bit codes, 8 bits a pass, ping-pong
+    // between `active` and `nearest`; a pass whose digit is the same for
+    // every code moves nothing and is skipped.
+    for (i, a) in active.iter_mut().enumerate() {
+        *a = i as u32;
+    }
+    let mut sorted_in_active = true;
+    for shift in [0u32, 8, 16, 24] {
+        let (from, to) = if sorted_in_active {
+            (&mut *active, &mut *nearest)
+        } else {
+            (&mut *nearest, &mut *active)
+        };
+        let digit = |i: u32| ((keys[i as usize] >> shift) & 0xFF) as usize;
+        let mut start = [0u32; 256];
+        for &i in from.iter() {
+            start[digit(i)] += 1;
+        }
+        if start.iter().any(|&c| c as usize == n) {
+            continue;
+        }
+        let mut sum = 0;
+        for c in start.iter_mut() {
+            (*c, sum) = (sum, sum + *c);
+        }
+        for &i in from.iter() {
+            let d = digit(i);
+            to[start[d] as usize] = i;
+            start[d] += 1;
+        }
+        sorted_in_active = !sorted_in_active;
+    }
+    if !sorted_in_active {
+        active.copy_from_slice(nearest);
     }
     let mut k = n;
     let mut next = n as u32;
     const GONE: u32 = u32::MAX;
+    // Each pair's cost is computed once: row `i` of `ring` holds the costs
+    // of `i` with `i + 1 ..= i + radius`, kept until the last of those has
+    // read it. Wider windows than the ring recompute both directions.
+    let mut ring = [[0.0f32; RING]; RING];
     while k > 1 {
         // Each cluster's best partner within the window.
         for i in 0..k {
             let (lo, hi) = (i.saturating_sub(radius), (i + radius + 1).min(k));
             let bi = &clusters[active[i] as usize].bv;
             let (mut best, mut partner) = (f32::INFINITY, i);
+            let cached = radius <= RING;
             for j in lo..hi {
                 if j == i {
                     continue;
                 }
-                let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, scale);
+                let c = if cached && j < i {
+                    ring[j % RING][i - j - 1]
+                } else {
+                    let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, scale);
+                    if cached {
+                        ring[i % RING][j - i - 1] = c;
+                    }
+                    c
+                };
                 // Ties go to the nearer index on the curve, then the lower one.
                 if c < best || (c == best && tie_prefers(i, j, partner)) {
                     (best, partner) = (c, j);
@@ -478,6 +523,10 @@ fn ploc<B: BoundingVolume, P: Primitive>(
     }
     active[0]
 }
+
+/// The widest search window whose pair costs are cached (`RING * RING`
+/// floats on the stack, 1 KiB).
+const RING: usize = 16;
 
 /// Among equal costs, prefer the candidate `j` closer to `i` on the curve;
 /// between the two at the same distance, the one that makes the pair
