@@ -1,4 +1,5 @@
-//! Build speed and tree quality of bvhkit's top-down presets, on one rock of
+//! Build speed and tree quality of bvhkit's builders (top-down presets, as
+//! users call them and into reused buffers; PLOC; insertion), on one rock of
 //! the default scene (81 920 triangles). The comparison with other crates is
 //! `scripts/bench-peers` (its own workspace, so the peers stay out of this one).
 //!
@@ -6,9 +7,9 @@
 //! Before the timings it prints the SAH cost of each tree (C_t = C_i = 1,
 //! AABB areas, relative to the root).
 
-use bvhkit::builders::PrimitiveRef;
+use bvhkit::builders::{BottomUp, Insertion, Method, PrimitiveRef};
 use bvhkit::{Aabb, AxisChoice, Node, TopDown, Triangle};
-use bvhkit_std::scene;
+use bvhkit_std::{scene, OwnedBvh};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
@@ -80,6 +81,32 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    // As users build: everything allocated per build (`OwnedBvh`).
+    g.bench_function("bvhkit-default-owned", |b| {
+        b.iter(|| {
+            let t = OwnedBvh::<Aabb>::build(&TopDown::default(), black_box(&tris)).unwrap();
+            black_box(t.view().node_count())
+        })
+    });
+    for radius in [1, 16] {
+        let ploc = BottomUp {
+            method: Method::Ploc { radius },
+            ..BottomUp::default()
+        };
+        g.bench_function(format!("bvhkit-ploc-r{radius}-owned"), |b| {
+            b.iter(|| {
+                let t = OwnedBvh::<Aabb>::build_bottom_up(&ploc, black_box(&tris)).unwrap();
+                black_box(t.view().node_count())
+            })
+        });
+    }
+    g.bench_function("bvhkit-insertion-owned", |b| {
+        b.iter(|| {
+            let t = OwnedBvh::<Aabb>::build_by_insertion(&Insertion::default(), black_box(&tris))
+                .unwrap();
+            black_box(t.view().node_count())
+        })
+    });
     g.finish();
 }
 
