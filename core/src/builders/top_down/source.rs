@@ -26,6 +26,15 @@ impl PrimitiveRef {
     };
 
     /// The record of primitive `index` with these bounds.
+    ///
+    /// ```
+    /// use bvhkit::{builders::PrimitiveRef, Aabb};
+    /// use glam::Vec3;
+    /// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    /// let r = PrimitiveRef::new(&b, 1_000_000);
+    /// assert_eq!((r.bounds(), r.index()), (b, 1_000_000));
+    /// assert_eq!(core::mem::size_of::<PrimitiveRef>(), 32);
+    /// ```
     pub fn new(bounds: &Aabb, index: u32) -> Self {
         PrimitiveRef {
             min: bounds.min.extend((index & 0xFFFF) as f32),
