@@ -143,6 +143,16 @@ pub trait Exercises {
     /// dominates (another point dominates when it is no worse on both and
     /// strictly better on one). Equal points do not dominate each other.
     fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize>;
+
+    /// Exercise 16: the surface area heuristic over a row of bins. `bins`
+    /// are the bins along one axis, in order: each with the box of its
+    /// primitives ([`Aabb::EMPTY`] when it has none) and their count.
+    /// Boundary `b` (in `1..bins.len()`) puts `bins[..b]` on the left and
+    /// `bins[b..]` on the right, at cost `area(L) * n(L) + area(R) * n(R)`,
+    /// where `L` and `R` are the boxes of all the primitives on each side.
+    /// Return the cheapest boundary that leaves primitives on both sides (the
+    /// smallest such `b` among equal costs), or `None` when none does.
+    fn sah_best_boundary(&self, bins: &[(Aabb, u32)]) -> Option<usize>;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

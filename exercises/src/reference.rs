@@ -250,4 +250,25 @@ impl Exercises for Reference {
         }
         (lo, hi)
     }
+
+    fn sah_best_boundary(&self, bins: &[(Aabb, u32)]) -> Option<usize> {
+        // Written out plainly; the library's binned builder sweeps the bins
+        // once from each end instead (`core/src/builders/top_down/binned.rs`).
+        let side = |s: &[(Aabb, u32)]| {
+            s.iter()
+                .fold((Aabb::EMPTY, 0u32), |(b, n), (x, m)| (b.union(x), n + m))
+        };
+        let mut best: Option<(f32, usize)> = None;
+        for b in 1..bins.len() {
+            let ((l, nl), (r, nr)) = (side(&bins[..b]), side(&bins[b..]));
+            if nl == 0 || nr == 0 {
+                continue;
+            }
+            let cost = l.surface_area() * nl as f32 + r.surface_area() * nr as f32;
+            if best.is_none_or(|(c, _)| cost < c) {
+                best = Some((cost, b));
+            }
+        }
+        best.map(|(_, b)| b)
+    }
 }

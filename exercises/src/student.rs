@@ -188,4 +188,13 @@ impl Exercises for Student {
         let _ = points;
         todo!("exercise 15b")
     }
+
+    fn sah_best_boundary(&self, bins: &[(Aabb, u32)]) -> Option<usize> {
+        // Hint: a side's box is the union of its bins' boxes (`Aabb::union`),
+        // not the sum of their areas; `BoundingVolume::surface_area` gives
+        // the area. Skip a boundary with no primitives on one side. One
+        // sweep from each end makes it linear, but two loops are fine here.
+        let _ = bins;
+        todo!("exercise 16")
+    }
 }
