@@ -17,7 +17,7 @@
 //! Builds are deterministic, so counts must match exactly and SAH costs to
 //! a relative 1e-5 (room for a compiler reordering float sums, nothing
 //! more). An intended change re-records with `BVHKIT_BLESS=1 cargo test -p
-//! bvhkit-tests --test quality` and commits the new file with the reason.
+//! bvhkit-tests --test all quality::` and commits the new file with the reason.
 
 use bvhkit::glam::Vec3;
 use bvhkit::query::Counts;
@@ -196,7 +196,7 @@ fn trees_and_pruning_match_the_recorded_values() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(RECORDED);
     if std::env::var_os("BVHKIT_BLESS").is_some() {
         let mut text = String::from(
-            "# Recorded by tests/tests/quality.rs (BVHKIT_BLESS=1 cargo test -p bvhkit-tests --test quality).\n\
+            "# Recorded by tests/tests/all/quality.rs (BVHKIT_BLESS=1 cargo test -p bvhkit-tests --test all quality::).\n\
              # A change here must say in its commit why the trees or the pruning changed.\n",
         );
         for (k, v) in &got {

@@ -1,0 +1,24 @@
+//! The integration, property and stress tests, one module per subject, in one
+//! test binary: one link instead of twenty, which keeps `cargo test` and
+//! mutation testing (`scripts/mutants`, which rebuilds the tests per mutant)
+//! affordable. `alloc_free` stays its own binary: it installs a counting
+//! global allocator, which every test in the process would feed.
+//!
+//! One subject: `cargo test -p bvhkit-tests --test all quality::`.
+
+mod advisor;
+mod bad_input;
+mod bottom_up;
+mod empty;
+mod equivalence;
+mod fits;
+mod insertion;
+mod layouts;
+mod measures;
+mod narrow;
+mod pitfalls;
+mod quality;
+mod refit;
+mod single_queries;
+mod sizing;
+mod system;
