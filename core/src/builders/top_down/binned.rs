@@ -5,7 +5,6 @@ use super::criteria::Norm;
 use super::source::Source;
 use super::split_points::{even_bin, Plan};
 use super::Task;
-use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
 use glam::{Vec3, Vec3A};
 
@@ -71,22 +70,21 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
         if scale[a] == 0.0 {
             return None;
         }
-        let (mut bins, mut counts) = ([LaneBin::EMPTY; N], [0u32; N]);
+        let (mut bins, mut counts) = ([[LaneBin::EMPTY; N]], [[0u32; N]]);
         for &i in range {
             let b = src.bounds(i);
             let j = even_bin(b.center()[a], c.min[a], scale[a], k);
-            bins[j] = bins[j].union(&LaneBin::of(&b));
-            counts[j] += 1;
+            bins[0][j] = bins[0][j].union(&LaneBin::of(&b));
+            counts[0][j] += 1;
         }
-        return best_boundary(&bins[..k], &counts[..k], range.len(), norm).map(|(_, boundary)| {
-            Plan::Axis {
-                axis: a,
-                lo: c.min[a],
-                scale: scale[a],
-                k,
-                boundary,
-                known: None,
-            }
+        let best = best_of_rows(&bins, &counts, k, range.len(), [true], norm);
+        return best.map(|(_, _, boundary)| Plan::Axis {
+            axis: a,
+            lo: c.min[a],
+            scale: scale[a],
+            k,
+            boundary,
+            known: None,
         });
     }
     // Bin bounds in 4-lane registers: a union is two instructions, and the
@@ -114,7 +112,7 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
         }
     }
     let enabled = [scale[0] != 0.0, scale[1] != 0.0, scale[2] != 0.0];
-    let best = best_of_axes(&lanes, &counts, k, range.len(), enabled, norm);
+    let best = best_of_rows(&lanes, &counts, k, range.len(), enabled, norm);
     let (_, a, boundary) = best?;
     // The children's boxes are the unions of their bins, exactly the boxes
     // of the primitives the partition will put on each side.
@@ -134,67 +132,37 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
     })
 }
 
-/// The SAH-best boundary of a row of bins (`counts[j]` primitives in bin
-/// `j`, `n` in all): (cost, boundary). The first of equal costs wins.
-pub(super) fn best_boundary(
-    bins: &[LaneBin],
-    counts: &[u32],
-    n: usize,
-    norm: &Norm,
-) -> Option<(f32, usize)> {
-    let k = bins.len();
-    let mut right_cost = [0.0f32; MAX_BINS];
-    let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
-    for j in (1..k).rev() {
-        acc = acc.union(&bins[j]);
-        m += counts[j];
-        right_cost[j] = norm.half_area_lanes(&acc) * m as f32;
-    }
-    let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
-    let mut best: Option<(f32, usize)> = None;
-    for j in 1..k {
-        left = left.union(&bins[j - 1]);
-        m += counts[j - 1];
-        if m == 0 || m as usize == n {
-            continue;
-        }
-        let c = norm.half_area_lanes(&left) * m as f32 + right_cost[j];
-        if best.is_none_or(|(b, _)| c < b) {
-            best = Some((c, j));
-        }
-    }
-    best
-}
-
-/// [`best_boundary`] for three rows at once, interleaved so the three
-/// independent sweeps overlap, and without branches in the scoring loop;
-/// the same choice as scoring each enabled row in turn (the first of equal
-/// costs wins, within a row and across rows): (cost, row, boundary).
+/// The SAH-best boundary over rows of bins (one row per axis tried; bin
+/// `j` of row `a` holds `counts[a][j]` primitives, `n` in all), as
+/// (cost, row, boundary). The rows are swept side by side, so their
+/// independent prefix unions overlap, and the scoring loop has no branches;
+/// the choice is the same as scoring each enabled row in turn: the first of
+/// equal costs wins, within a row and across rows.
 #[inline(always)]
-fn best_of_axes<const N: usize>(
-    lanes: &[[LaneBin; N]; 3],
-    counts: &[[u32; N]; 3],
+fn best_of_rows<const R: usize, const N: usize>(
+    lanes: &[[LaneBin; N]; R],
+    counts: &[[u32; N]; R],
     k: usize,
     n: usize,
-    enabled: [bool; 3],
+    enabled: [bool; R],
     norm: &Norm,
 ) -> Option<(f32, usize, usize)> {
     let k = k.min(N);
-    let mut right = [[0.0f32; N]; 3];
-    let mut acc = [LaneBin::EMPTY; 3];
-    let mut m = [0u32; 3];
+    let mut right = [[0.0f32; N]; R];
+    let mut acc = [LaneBin::EMPTY; R];
+    let mut m = [0u32; R];
     for j in (1..k).rev() {
-        for a in 0..3 {
+        for a in 0..R {
             acc[a] = acc[a].union(&lanes[a][j]);
             m[a] += counts[a][j];
             right[a][j] = norm.half_area_lanes(&acc[a]) * m[a] as f32;
         }
     }
-    let mut left = [LaneBin::EMPTY; 3];
-    let mut m = [0u32; 3];
-    let mut best = [(f32::INFINITY, 0usize); 3];
+    let mut left = [LaneBin::EMPTY; R];
+    let mut m = [0u32; R];
+    let mut best = [(f32::INFINITY, 0usize); R];
     for j in 1..k {
-        for a in 0..3 {
+        for a in 0..R {
             left[a] = left[a].union(&lanes[a][j - 1]);
             m[a] += counts[a][j - 1];
             let c = norm.half_area_lanes(&left[a]) * m[a] as f32 + right[a][j];
