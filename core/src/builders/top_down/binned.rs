@@ -5,6 +5,7 @@ use super::criteria::Norm;
 use super::source::Source;
 use super::split_points::{even_bin, Plan};
 use super::Task;
+use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
 use glam::{Vec3, Vec3A};
 
@@ -77,7 +78,14 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
             bins[0][j] = bins[0][j].union(&LaneBin::of(&b));
             counts[0][j] += 1;
         }
-        let best = best_of_rows(&bins, &counts, k, range.len(), [true], norm);
+        let (row, count) = (&bins[0][..k], &counts[0][..k]);
+        let best = best_of_rows(
+            [row; 3],
+            [count; 3],
+            range.len(),
+            [true, false, false],
+            norm,
+        );
         return best.map(|(_, _, boundary)| Plan::Axis {
             axis: a,
             lo: c.min[a],
@@ -112,7 +120,14 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
         }
     }
     let enabled = [scale[0] != 0.0, scale[1] != 0.0, scale[2] != 0.0];
-    let best = best_of_rows(&lanes, &counts, k, range.len(), enabled, norm);
+    let k = k.min(N);
+    let best = best_of_rows(
+        [&lanes[0][..k], &lanes[1][..k], &lanes[2][..k]],
+        [&counts[0][..k], &counts[1][..k], &counts[2][..k]],
+        range.len(),
+        enabled,
+        norm,
+    );
     let (_, a, boundary) = best?;
     // The children's boxes are the unions of their bins, exactly the boxes
     // of the primitives the partition will put on each side.
@@ -132,51 +147,49 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
     })
 }
 
-/// The SAH-best boundary over rows of bins (one row per axis tried; bin
-/// `j` of row `a` holds `counts[a][j]` primitives, `n` in all), as
-/// (cost, row, boundary). The rows are swept side by side, so their
-/// independent prefix unions overlap, and the scoring loop has no branches;
-/// the choice is the same as scoring each enabled row in turn: the first of
-/// equal costs wins, within a row and across rows.
-#[inline(always)]
-fn best_of_rows<const R: usize, const N: usize>(
-    lanes: &[[LaneBin; N]; R],
-    counts: &[[u32; N]; R],
-    k: usize,
+/// The SAH-best boundary over rows of bins (one row per axis tried; bin `j`
+/// of row `a` holds `counts[a][j]` primitives, `n` in all, every row of the
+/// same length), as (cost, row, boundary). Each row is swept once from the
+/// right (costs kept) and once from the left, scoring without branches; the
+/// first of equal costs wins, within a row and across rows.
+// Not generic and out of line: one copy in the firmware, and the frame of
+// its cost array is not added to every caller's.
+#[inline(never)]
+fn best_of_rows(
+    lanes: [&[LaneBin]; 3],
+    counts: [&[u32]; 3],
     n: usize,
-    enabled: [bool; R],
+    enabled: [bool; 3],
     norm: &Norm,
 ) -> Option<(f32, usize, usize)> {
-    let k = k.min(N);
-    let mut right = [[0.0f32; N]; R];
-    let mut acc = [LaneBin::EMPTY; R];
-    let mut m = [0u32; R];
-    for j in (1..k).rev() {
-        for a in 0..R {
-            acc[a] = acc[a].union(&lanes[a][j]);
-            m[a] += counts[a][j];
-            right[a][j] = norm.half_area_lanes(&acc[a]) * m[a] as f32;
+    let mut pick: Option<(f32, usize, usize)> = None;
+    let mut right = [0.0f32; MAX_BINS];
+    for a in (0..3).filter(|&a| enabled[a]) {
+        let (row, count) = (lanes[a], counts[a]);
+        let k = row.len().min(count.len()).min(MAX_BINS);
+        let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
+        for j in (1..k).rev() {
+            acc = acc.union(&row[j]);
+            m += count[j];
+            right[j] = norm.half_area_lanes(&acc) * m as f32;
         }
-    }
-    let mut left = [LaneBin::EMPTY; R];
-    let mut m = [0u32; R];
-    let mut best = [(f32::INFINITY, 0usize); R];
-    for j in 1..k {
-        for a in 0..R {
-            left[a] = left[a].union(&lanes[a][j - 1]);
-            m[a] += counts[a][j - 1];
-            let c = norm.half_area_lanes(&left[a]) * m[a] as f32 + right[a][j];
-            let valid = enabled[a] && m[a] != 0 && m[a] as usize != n;
-            let c = if valid { c } else { f32::INFINITY };
-            if c < best[a].0 {
-                best[a] = (c, j);
+        let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
+        let mut best = (f32::INFINITY, 0usize);
+        for j in 1..k {
+            left = left.union(&row[j - 1]);
+            m += count[j - 1];
+            let c = norm.half_area_lanes(&left) * m as f32 + right[j];
+            let c = if m != 0 && m as usize != n {
+                c
+            } else {
+                f32::INFINITY
+            };
+            if c < best.0 {
+                best = (c, j);
             }
         }
-    }
-    let mut pick: Option<(f32, usize, usize)> = None;
-    for (a, &(c, j)) in best.iter().enumerate() {
-        if c < f32::INFINITY && pick.is_none_or(|(b, _, _)| c < b) {
-            pick = Some((c, a, j));
+        if best.0 < f32::INFINITY && pick.is_none_or(|(b, _, _)| best.0 < b) {
+            pick = Some((best.0, a, best.1));
         }
     }
     pick
