@@ -17,7 +17,7 @@ pub mod reference;
 pub mod student;
 
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Bvh, CostModel, Counts, Node, Sphere};
+use bvhkit::{Aabb, Bvh, CostModel, Counts, Dop14, Node, Sphere};
 
 /// The exercises, one method each. Statements and hints are in the book
 /// (chapter "Exercises") and on the stubs in [`student`].
@@ -153,6 +153,15 @@ pub trait Exercises {
     /// Return the cheapest boundary that leaves primitives on both sides (the
     /// smallest such `b` among equal costs), or `None` when none does.
     fn sah_best_boundary(&self, bins: &[(Aabb, u32)]) -> Option<usize>;
+
+    /// Exercise 17a: the 14-DOP of a non-empty point set: along each of its
+    /// seven directions `Dop14::direction(i)` (the axes, then the four body
+    /// diagonals, unnormalised), the smallest and largest projection of the
+    /// points, rounded *outward* to `f32` so that every point is inside even
+    /// when the sum rounds (the library checks containment in `f64`).
+    fn dop14_fit(&self, points: &[Vec3]) -> Dop14;
+    /// Exercise 17b: do two 14-DOPs overlap? Touching counts.
+    fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

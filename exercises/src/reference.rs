@@ -3,7 +3,8 @@
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Node, PairTraversal, Pairs, Sphere,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Dop14, Node, PairTraversal, Pairs,
+    Sphere,
 };
 
 /// The reference implementation: scores 100%.
@@ -270,5 +271,13 @@ impl Exercises for Reference {
             }
         }
         best.map(|(_, b)| b)
+    }
+
+    fn dop14_fit(&self, points: &[Vec3]) -> Dop14 {
+        BoundingVolume::fit(points)
+    }
+
+    fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool {
+        BoundingVolume::overlaps(a, b)
     }
 }

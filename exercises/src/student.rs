@@ -3,7 +3,7 @@
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Bvh, CostModel, Counts, Node, Sphere};
+use bvhkit::{Aabb, Bvh, CostModel, Counts, Dop14, Node, Sphere};
 
 /// Your implementation of the exercises.
 #[derive(Debug, Default)]
@@ -196,5 +196,20 @@ impl Exercises for Student {
         // sweep from each end makes it linear, but two loops are fine here.
         let _ = bins;
         todo!("exercise 16")
+    }
+
+    fn dop14_fit(&self, points: &[Vec3]) -> Dop14 {
+        // Hint: `Dop14::direction(i)` gives the direction's components as
+        // i8; project in f64, then store `f32` bounds no tighter than the
+        // f64 values (step a rounded `as f32` value outward with
+        // `f32::next_down` / `next_up` where it landed inside).
+        let _ = points;
+        todo!("exercise 17a")
+    }
+
+    fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool {
+        // Hint: like two boxes, one interval test per direction.
+        let _ = (a, b);
+        todo!("exercise 17b")
     }
 }
