@@ -9,7 +9,8 @@ use crate::reference::Reference;
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Dop14, Node, Sphere, TopDown,
+    brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node,
+    Open, Sphere, TopDown,
 };
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::mpsc;
@@ -35,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 17] = [
+pub const EXERCISES: [(u32, &str); 18] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -56,6 +57,10 @@ pub const EXERCISES: [(u32, &str); 17] = [
     ),
     (16, "the surface area heuristic over a row of bins"),
     (17, "14-DOPs: fit and overlap"),
+    (
+        18,
+        "descent rules: A first, simultaneous, alternate, by overlap",
+    ),
 ];
 
 /// A score for one exercise.
@@ -1001,6 +1006,83 @@ pub fn checks() -> Vec<Check> {
                 diagonal && random
             },
         },
+        // Exercise 18
+        Check {
+            exercise: 18,
+            name: "A first, B first and simultaneous, at every depth",
+            points: 3,
+            run: |e| {
+                let (a, b) = (unit_at(0.0), unit_at(0.5));
+                (0..6).all(|depth| {
+                    let d = Decision {
+                        a: &a,
+                        b: &b,
+                        a_children: None,
+                        b_children: None,
+                        depth,
+                    };
+                    e.descent_open(Descent::AFirst, &d) == Open::A
+                        && e.descent_open(Descent::BFirst, &d) == Open::B
+                        && e.descent_open(Descent::Simultaneous, &d) == Open::Both
+                })
+            },
+        },
+        Check {
+            exercise: 18,
+            name: "alternate: A at even depths, B at odd",
+            points: 3,
+            run: |e| {
+                let (a, b) = (unit_at(0.0), unit_at(0.5));
+                (0..8).all(|depth| {
+                    let d = Decision {
+                        a: &a,
+                        b: &b,
+                        a_children: None,
+                        b_children: None,
+                        depth,
+                    };
+                    let want = if depth % 2 == 0 { Open::A } else { Open::B };
+                    e.descent_open(Descent::Alternate, &d) == want
+                })
+            },
+        },
+        Check {
+            exercise: 18,
+            name: "by overlap: opens the side whose children stay least inside (not the larger)",
+            points: 4,
+            run: |e| {
+                let slab = |x0: f32, x1: f32| b([x0, 0.0, 0.0], [x1, 4.0, 4.0]);
+                // A = [0,4] split at 2: on average a quarter of A's children
+                // lies in B. B = [3,10] split at 4: half of B's children lies
+                // in A. So A is opened, although B is the larger node.
+                let (a, ac) = (slab(0.0, 4.0), [slab(0.0, 2.0), slab(2.0, 4.0)]);
+                let (bb, bc) = (slab(3.0, 10.0), [slab(3.0, 4.0), slab(4.0, 10.0)]);
+                let d = Decision {
+                    a: &a,
+                    b: &bb,
+                    a_children: Some(&ac),
+                    b_children: Some(&bc),
+                    depth: 0,
+                };
+                let swapped = Decision {
+                    a: &bb,
+                    b: &a,
+                    a_children: Some(&bc),
+                    b_children: Some(&ac),
+                    depth: 1,
+                };
+                let same = Decision {
+                    a: &a,
+                    b: &a,
+                    a_children: Some(&ac),
+                    b_children: Some(&ac),
+                    depth: 0,
+                };
+                e.descent_open(Descent::Overlap, &d) == Open::A
+                    && e.descent_open(Descent::Overlap, &swapped) == Open::B
+                    && e.descent_open(Descent::Overlap, &same) == Open::A
+            },
+        },
     ]
 }
 
@@ -1478,7 +1560,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 190/190 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 200/200 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -1982,6 +2064,36 @@ mod tests {
                 _ => Reference.dop14_overlaps(a, b),
             }
         }
+
+        fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open {
+            let larger = || {
+                if d.a.volume() >= d.b.volume() {
+                    Open::A
+                } else {
+                    Open::B
+                }
+            };
+            match (self.0, rule) {
+                // Odd depths open A.
+                (45, Descent::Alternate) => {
+                    if d.depth % 2 == 1 {
+                        Open::A
+                    } else {
+                        Open::B
+                    }
+                }
+                // Opens the side whose children stay *most* inside.
+                (46, Descent::Overlap) => match Reference.descent_open(rule, d) {
+                    Open::A => Open::B,
+                    _ => Open::A,
+                },
+                // Simultaneous opens one side only.
+                (47, Descent::Simultaneous) => Open::A,
+                // By overlap falls back to the larger volume.
+                (48, Descent::Overlap) => larger(),
+                _ => Reference.descent_open(rule, d),
+            }
+        }
     }
 
     #[test]
@@ -2031,6 +2143,10 @@ mod tests {
             (42, 17),
             (43, 17),
             (44, 17),
+            (45, 18),
+            (46, 18),
+            (47, 18),
+            (48, 18),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

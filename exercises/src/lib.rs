@@ -17,7 +17,7 @@ pub mod reference;
 pub mod student;
 
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Bvh, CostModel, Counts, Dop14, Node, Sphere};
+use bvhkit::{Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Sphere};
 
 /// The exercises, one method each. Statements and hints are in the book
 /// (chapter "Exercises") and on the stubs in [`student`].
@@ -162,6 +162,16 @@ pub trait Exercises {
     fn dop14_fit(&self, points: &[Vec3]) -> Dop14;
     /// Exercise 17b: do two 14-DOPs overlap? Touching counts.
     fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool;
+
+    /// Exercise 18: the other descent rules of a two-tree traversal, for two
+    /// internal nodes that overlap: which side to open under `rule`.
+    /// `AFirst` and `BFirst` always open their tree; `Simultaneous` opens
+    /// both; `Alternate` opens A at even `d.depth` and B at odd; `Overlap`
+    /// opens the side whose children lie, on average, least inside the other
+    /// node, "inside" being the fraction of a child box's volume within the
+    /// other node's box (children are given; A on a tie). Never called with
+    /// `Larger` (that is exercise 4).
+    fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

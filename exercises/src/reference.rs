@@ -3,8 +3,8 @@
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Dop14, Node, PairTraversal, Pairs,
-    Sphere,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open,
+    PairTraversal, Pairs, Sphere,
 };
 
 /// The reference implementation: scores 100%.
@@ -279,5 +279,9 @@ impl Exercises for Reference {
 
     fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool {
         BoundingVolume::overlaps(a, b)
+    }
+
+    fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open {
+        bvhkit::DescentRule::choose(&rule, d)
     }
 }
