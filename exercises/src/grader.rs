@@ -10,7 +10,7 @@ use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node,
-    Open, Sphere, TopDown,
+    Open, Partition, Sphere, TopDown,
 };
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::mpsc;
@@ -36,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 18] = [
+pub const EXERCISES: [(u32, &str); 20] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -61,6 +61,8 @@ pub const EXERCISES: [(u32, &str); 18] = [
         18,
         "descent rules: A first, simultaneous, alternate, by overlap",
     ),
+    (19, "partition criteria of a top-down split"),
+    (20, "breadth-first and depth-first visiting order"),
 ];
 
 /// A score for one exercise.
@@ -1083,7 +1085,84 @@ pub fn checks() -> Vec<Check> {
                     && e.descent_open(Descent::Overlap, &same) == Open::A
             },
         },
+        // Exercise 19
+        Check {
+            exercise: 19,
+            name: "balance and the SAH (counts weigh the areas)",
+            points: 3,
+            run: |e| {
+                let (l, r) = (b([0.0; 3], [1.0, 1.0, 1.0]), b([0.0; 3], [2.0, 1.0, 1.0]));
+                close(e.partition_cost(Partition::Balance, &l, 7, &r, 3), 4.0)
+                    && close(e.partition_cost(Partition::Balance, &l, 3, &r, 7), 4.0)
+                    // 7 * 6 + 3 * 10
+                    && close(e.partition_cost(Partition::SurfaceArea, &l, 7, &r, 3), 72.0)
+            },
+        },
+        Check {
+            exercise: 19,
+            name: "volume sum and the larger child",
+            points: 3,
+            run: |e| {
+                let (l, r) = (b([0.0; 3], [1.0, 2.0, 3.0]), b([5.0; 3], [9.0, 6.0, 6.0]));
+                close(e.partition_cost(Partition::Volume, &l, 1, &r, 1), 10.0)
+                    && close(e.partition_cost(Partition::LargerChild, &l, 1, &r, 1), 6.0)
+                    && close(e.partition_cost(Partition::LargerChild, &r, 1, &l, 1), 6.0)
+            },
+        },
+        Check {
+            exercise: 19,
+            name: "overlap volume and separation, apart on one axis or on two",
+            points: 4,
+            run: |e| {
+                let l = b([0.0; 3], [2.0, 2.0, 2.0]);
+                let overlapping = b([1.0, 1.0, 1.5], [3.0, 3.0, 3.0]); // shares 1 x 1 x 0.5
+                let apart_x = b([4.0, 0.5, 0.5], [5.0, 1.5, 1.5]); // 2 away along x only
+                let apart_xy = b([3.0, 5.0, 0.0], [4.0, 6.0, 2.0]); // 1 along x, 3 along y
+                let cost = |c, r: &Aabb| e.partition_cost(c, &l, 1, r, 1);
+                close(cost(Partition::Overlap, &overlapping), 0.5)
+                    && close(cost(Partition::Overlap, &apart_x), 0.0)
+                    && close(cost(Partition::Overlap, &apart_xy), 0.0)
+                    && close(cost(Partition::Separation, &apart_x), -2.0)
+                    && close(cost(Partition::Separation, &apart_xy), -3.0)
+                    && close(cost(Partition::Separation, &overlapping), 0.5)
+            },
+        },
+        // Exercise 20
+        Check {
+            exercise: 20,
+            name: "depth-first: preorder, left before right",
+            points: 5,
+            run: |e| {
+                visit_cases().iter().all(|t| {
+                    e.visit_order(&t.bvh(), false) == Reference.visit_order(&t.bvh(), false)
+                })
+            },
+        },
+        Check {
+            exercise: 20,
+            name: "breadth-first: level by level, left to right",
+            points: 5,
+            run: |e| {
+                visit_cases()
+                    .iter()
+                    .all(|t| e.visit_order(&t.bvh(), true) == Reference.visit_order(&t.bvh(), true))
+            },
+        },
     ]
+}
+
+/// Relative closeness for the exercises' `f64` answers.
+fn close(x: f64, want: f64) -> bool {
+    (x - want).abs() <= 1e-9 * want.abs().max(1.0)
+}
+
+/// Trees to walk: empty, one leaf, and top-down trees of a few shapes.
+fn visit_cases() -> Vec<Tree> {
+    let mut cases = vec![Tree::new(vec![], 1), Tree::new(boxes(1, 3, Vec3::ZERO), 1)];
+    for (n, seed) in [(2, 5), (7, 11), (40, 13)] {
+        cases.push(Tree::new(boxes(n, seed, Vec3::ZERO), 1 + (seed % 3) as u32));
+    }
+    cases
 }
 
 /// The unit cube at `x` along the x axis.
@@ -1560,7 +1639,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 200/200 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 220/220 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -2094,6 +2173,59 @@ mod tests {
                 _ => Reference.descent_open(rule, d),
             }
         }
+
+        fn partition_cost(&self, c: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64 {
+            let ext = |b: &Aabb| (b.max - b.min).as_dvec3();
+            match (self.0, c) {
+                // Areas without the counts.
+                (49, Partition::SurfaceArea) => {
+                    let a = |b: &Aabb| {
+                        let e = ext(b);
+                        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+                    };
+                    a(l) + a(r)
+                }
+                // Intersection extents not clamped.
+                (50, Partition::Overlap) => {
+                    let s = (l.max.min(r.max) - l.min.max(r.min)).as_dvec3();
+                    if s.x < 0.0 && s.y < 0.0 && s.z < 0.0 {
+                        0.0
+                    } else {
+                        s.element_product()
+                    }
+                }
+                // The smallest gap over the axes.
+                (51, Partition::Separation) => {
+                    -((l.min - r.max).max(r.min - l.max).min_element() as f64)
+                }
+                // The sum, not the larger.
+                (52, Partition::LargerChild) => ext(l).element_product() + ext(r).element_product(),
+                _ => Reference.partition_cost(c, l, nl, r, nr),
+            }
+        }
+
+        fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
+            let nodes = tree.nodes();
+            match self.0 {
+                // Depth-first with the left child pushed first: right before left.
+                53 if !breadth_first => {
+                    let (mut order, mut stack) = (vec![], vec![]);
+                    if !nodes.is_empty() {
+                        stack.push(0u32);
+                    }
+                    while let Some(i) = stack.pop() {
+                        order.push(i);
+                        if let Some((l, r)) = nodes[i as usize].children() {
+                            stack.extend([l, r]);
+                        }
+                    }
+                    order
+                }
+                // Breadth-first with a stack: depth-first, right first.
+                54 if breadth_first => Wrong(53).visit_order(tree, false),
+                _ => Reference.visit_order(tree, breadth_first),
+            }
+        }
     }
 
     #[test]
@@ -2147,6 +2279,12 @@ mod tests {
             (46, 18),
             (47, 18),
             (48, 18),
+            (49, 19),
+            (50, 19),
+            (51, 19),
+            (52, 19),
+            (53, 20),
+            (54, 20),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

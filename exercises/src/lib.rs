@@ -17,7 +17,9 @@ pub mod reference;
 pub mod student;
 
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Sphere};
+use bvhkit::{
+    Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Partition, Sphere,
+};
 
 /// The exercises, one method each. Statements and hints are in the book
 /// (chapter "Exercises") and on the stubs in [`student`].
@@ -172,6 +174,23 @@ pub trait Exercises {
     /// other node's box (children are given; A on a tie). Never called with
     /// `Larger` (that is exercise 4).
     fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open;
+
+    /// Exercise 19: the partition criteria of a top-down split, as a cost to
+    /// minimise, in `f64`, for children boxes `l` and `r` holding `nl` and `nr`
+    /// primitives: `Balance` is `|nl - nr|`; `SurfaceArea` is
+    /// `nl * A(l) + nr * A(r)` (full surface areas); `Volume` is
+    /// `V(l) + V(r)`; `LargerChild` is `max(V(l), V(r))`; `Overlap` is the
+    /// volume of `l ∩ r` (0 when they do not overlap); `Separation` is minus
+    /// the gap between the boxes, the gap being the largest distance between
+    /// them along any axis (negative when they overlap on every axis). Never
+    /// called with `Weighted`.
+    fn partition_cost(&self, criterion: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64;
+
+    /// Exercise 20: the order in which a traversal from the root visits the
+    /// nodes of `tree`, as node indices: depth-first is preorder, the left
+    /// child's subtree before the right's; breadth-first is level by level,
+    /// left to right. The empty tree has no nodes.
+    fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32>;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

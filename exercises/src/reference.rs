@@ -4,7 +4,7 @@ use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open,
-    PairTraversal, Pairs, Sphere,
+    PairTraversal, Pairs, Partition, Sphere,
 };
 
 /// The reference implementation: scores 100%.
@@ -283,5 +283,53 @@ impl Exercises for Reference {
 
     fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open {
         bvhkit::DescentRule::choose(&rule, d)
+    }
+
+    fn partition_cost(&self, criterion: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64 {
+        // Written out in f64; the builder scores the same criteria on boxes
+        // scaled into the parent's unit cube (`core/src/builders/top_down/criteria.rs`).
+        let ext = |b: &Aabb| (b.max - b.min).as_dvec3().max(bvhkit::glam::DVec3::ZERO);
+        let area = |b: &Aabb| {
+            let e = ext(b);
+            2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+        };
+        let volume = |b: &Aabb| ext(b).element_product();
+        let shared = (l.max.min(r.max) - l.min.max(r.min)).as_dvec3();
+        let gap = (l.min - r.max).max(r.min - l.max).max_element() as f64;
+        match criterion {
+            Partition::Balance => (nl as f64 - nr as f64).abs(),
+            Partition::SurfaceArea => nl as f64 * area(l) + nr as f64 * area(r),
+            Partition::Volume => volume(l) + volume(r),
+            Partition::LargerChild => volume(l).max(volume(r)),
+            Partition::Overlap => shared.max(bvhkit::glam::DVec3::ZERO).element_product(),
+            Partition::Separation => -gap,
+            Partition::Weighted { .. } => panic!("exercise 19 is not asked for Weighted"),
+        }
+    }
+
+    fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
+        let nodes = tree.nodes();
+        let mut order = Vec::with_capacity(nodes.len());
+        let mut waiting = std::collections::VecDeque::new();
+        if !nodes.is_empty() {
+            waiting.push_back(0u32);
+        }
+        // A queue taken from the front is breadth-first; from the back, with
+        // the right child put in first, depth-first.
+        while let Some(i) = if breadth_first {
+            waiting.pop_front()
+        } else {
+            waiting.pop_back()
+        } {
+            order.push(i);
+            if let Some((l, r)) = nodes[i as usize].children() {
+                if breadth_first {
+                    waiting.extend([l, r]);
+                } else {
+                    waiting.extend([r, l]);
+                }
+            }
+        }
+        order
     }
 }

@@ -3,7 +3,9 @@
 
 use crate::Exercises;
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Sphere};
+use bvhkit::{
+    Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Partition, Sphere,
+};
 
 /// Your implementation of the exercises.
 #[derive(Debug, Default)]
@@ -221,5 +223,22 @@ impl Exercises for Student {
         // B's children against `d.a`.
         let _ = (rule, d);
         todo!("exercise 18")
+    }
+
+    fn partition_cost(&self, criterion: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64 {
+        // Hint: `match criterion`. The intersection of two boxes has extents
+        // `min(maxes) - max(mins)`: clamp negative ones to 0 before
+        // multiplying (two negative extents make a positive product). The gap
+        // along an axis is `max(l.min - r.max, r.min - l.max)`.
+        let _ = (criterion, l, nl, r, nr);
+        todo!("exercise 19")
+    }
+
+    fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
+        // Hint: `tree.nodes()` and `Node::children()`; a queue (VecDeque)
+        // for breadth-first, a stack for depth-first (which child goes on
+        // the stack first?).
+        let _ = (tree, breadth_first);
+        todo!("exercise 20")
     }
 }
