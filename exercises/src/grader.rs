@@ -9,7 +9,7 @@ use crate::reference::Reference;
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node,
+    brute_force, Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb,
     Open, Partition, Sphere, TopDown,
 };
 use std::panic::{self, AssertUnwindSafe};
@@ -36,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 20] = [
+pub const EXERCISES: [(u32, &str); 21] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -63,6 +63,7 @@ pub const EXERCISES: [(u32, &str); 20] = [
     ),
     (19, "partition criteria of a top-down split"),
     (20, "breadth-first and depth-first visiting order"),
+    (21, "oriented boxes: the separating-axis test"),
 ];
 
 /// A score for one exercise.
@@ -1148,7 +1149,67 @@ pub fn checks() -> Vec<Check> {
                     .all(|t| e.visit_order(&t.bvh(), true) == Reference.visit_order(&t.bvh(), true))
             },
         },
+        // Exercise 21
+        Check {
+            exercise: 21,
+            name: "touching and nested boxes overlap",
+            points: 3,
+            run: |e| {
+                let cube = |c: Vec3| Obb {
+                    center: c,
+                    axes: [Vec3::X, Vec3::Y, Vec3::Z],
+                    half_extents: Vec3::ONE,
+                };
+                let (a, touching) = (cube(Vec3::ZERO), cube(Vec3::new(2.0, 0.5, 0.0)));
+                let inner = Obb {
+                    half_extents: Vec3::splat(0.25),
+                    ..turned(Vec3::ZERO, 0.7, 0.3)
+                };
+                e.obb_overlaps(&a, &touching)
+                    && e.obb_overlaps(&touching, &a)
+                    && e.obb_overlaps(&a, &inner)
+                    && e.obb_overlaps(&inner, &a)
+            },
+        },
+        Check {
+            exercise: 21,
+            name: "random turned boxes, edge-to-edge misses included, against the library",
+            points: 7,
+            run: |e| {
+                let mut r = Rng(21);
+                let mut clear = 0;
+                let agree = (0..4000).all(|_| {
+                    let a = turned(r.point(0.5, Vec3::ZERO), r.next() * 6.0, r.next() * 6.0);
+                    let b = turned(r.point(5.0, Vec3::ZERO), r.next() * 6.0, r.next() * 6.0);
+                    // Only pairs the answer of which does not change when
+                    // both boxes grow or shrink by 1%: no rounding question.
+                    let scaled = |x: &Obb, f: f32| Obb {
+                        half_extents: x.half_extents * f,
+                        ..*x
+                    };
+                    let lo = scaled(&a, 0.99).overlaps(&scaled(&b, 0.99));
+                    let hi = scaled(&a, 1.01).overlaps(&scaled(&b, 1.01));
+                    if lo != hi {
+                        return true;
+                    }
+                    clear += 1;
+                    e.obb_overlaps(&a, &b) == lo && e.obb_overlaps(&b, &a) == lo
+                });
+                agree && clear > 3000
+            },
+        },
     ]
+}
+
+/// A box with half extents (1, 0.6, 0.3) at `c`, turned by `yaw` about z
+/// and `pitch` about x.
+fn turned(c: Vec3, yaw: f32, pitch: f32) -> Obb {
+    let q = bvhkit::glam::Quat::from_rotation_z(yaw) * bvhkit::glam::Quat::from_rotation_x(pitch);
+    Obb {
+        center: c,
+        axes: [q * Vec3::X, q * Vec3::Y, q * Vec3::Z],
+        half_extents: Vec3::new(1.0, 0.6, 0.3),
+    }
 }
 
 /// Relative closeness for the exercises' `f64` answers.
@@ -1639,7 +1700,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 220/220 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 230/230 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -2226,6 +2287,34 @@ mod tests {
                 _ => Reference.visit_order(tree, breadth_first),
             }
         }
+
+        fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool {
+            let apart = |l: Vec3, strict: bool| {
+                let radius = |x: &Obb| {
+                    (0..3)
+                        .map(|k| x.half_extents[k] * x.axes[k].dot(l).abs())
+                        .sum::<f32>()
+                };
+                let d = (b.center - a.center).dot(l).abs();
+                let r = radius(a) + radius(b);
+                if strict {
+                    d >= r
+                } else {
+                    d > r
+                }
+            };
+            let faces = || a.axes.iter().chain(&b.axes).any(|&l| apart(l, false));
+            match self.0 {
+                // Face axes only: misses boxes that pass edge to edge.
+                55 => !faces(),
+                // Touching counts as apart.
+                56 => {
+                    !a.axes.iter().chain(&b.axes).any(|&l| apart(l, true))
+                        && Reference.obb_overlaps(a, b)
+                }
+                _ => Reference.obb_overlaps(a, b),
+            }
+        }
     }
 
     #[test]
@@ -2285,6 +2374,8 @@ mod tests {
             (52, 19),
             (53, 20),
             (54, 20),
+            (55, 21),
+            (56, 21),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

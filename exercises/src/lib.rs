@@ -18,7 +18,7 @@ pub mod student;
 
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open, Partition, Sphere,
+    Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
 };
 
 /// The exercises, one method each. Statements and hints are in the book
@@ -191,6 +191,12 @@ pub trait Exercises {
     /// child's subtree before the right's; breadth-first is level by level,
     /// left to right. The empty tree has no nodes.
     fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32>;
+
+    /// Exercise 21: do two oriented boxes overlap? The separating-axis test:
+    /// the boxes are disjoint exactly when their projections are disjoint on
+    /// one of fifteen axes (A's three, B's three, and the nine cross products
+    /// of an axis of A with one of B). Touching counts as overlapping.
+    fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

@@ -3,7 +3,7 @@
 use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Open,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
     PairTraversal, Pairs, Partition, Sphere,
 };
 
@@ -331,5 +331,9 @@ impl Exercises for Reference {
             }
         }
         order
+    }
+
+    fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool {
+        BoundingVolume::overlaps(a, b)
     }
 }
