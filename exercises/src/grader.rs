@@ -36,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 21] = [
+pub const EXERCISES: [(u32, &str); 22] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -64,6 +64,7 @@ pub const EXERCISES: [(u32, &str); 21] = [
     (19, "partition criteria of a top-down split"),
     (20, "breadth-first and depth-first visiting order"),
     (21, "oriented boxes: the separating-axis test"),
+    (22, "best-first search: the nearest primitive"),
 ];
 
 /// A score for one exercise.
@@ -1198,6 +1199,63 @@ pub fn checks() -> Vec<Check> {
                 agree && clear > 3000
             },
         },
+        // Exercise 22
+        Check {
+            exercise: 22,
+            name: "the nearest primitive and its distance, as brute force finds it",
+            points: 5,
+            run: |e| {
+                let mut r = Rng(22);
+                nearest_cases().iter().all(|t| {
+                    let tree = t.bvh();
+                    (0..40).all(|_| {
+                        let p = r.point(14.0, Vec3::new(4.5, 4.5, 1.0));
+                        let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+                        let want = t.prims.iter().map(dist).fold(f32::INFINITY, f32::min);
+                        match e.best_first_nearest(&tree, &t.prims, p) {
+                            None => t.prims.is_empty(),
+                            Some((k, d, _)) => {
+                                let tol = 1e-5 * want.max(1.0);
+                                (dist(&t.prims[k as usize]) - want).abs() <= tol
+                                    && (d - want).abs() <= tol
+                            }
+                        }
+                    })
+                })
+            },
+        },
+        Check {
+            exercise: 22,
+            name: "best-first: takes few nodes (at most 1.5x the reference's + 2)",
+            points: 5,
+            run: |e| {
+                let mut r = Rng(23);
+                nearest_cases()
+                    .iter()
+                    .filter(|t| !t.prims.is_empty())
+                    .all(|t| {
+                        let tree = t.bvh();
+                        (0..40).all(|_| {
+                            let p = r.point(14.0, Vec3::new(4.5, 4.5, 1.0));
+                            let taken = |x: &dyn Exercises| {
+                                x.best_first_nearest(&tree, &t.prims, p)
+                                    .map_or(usize::MAX, |a| a.2)
+                            };
+                            taken(e) * 2 <= taken(&Reference) * 3 + 4
+                        })
+                    })
+            },
+        },
+    ]
+}
+
+/// Trees for the nearest-primitive search: empty, and grids of boxes.
+fn nearest_cases() -> Vec<Tree> {
+    vec![
+        Tree::new(vec![], 1),
+        Tree::new(boxes(1, 31, Vec3::ZERO), 1),
+        Tree::new(boxes(60, 37, Vec3::ZERO), 1),
+        Tree::new(boxes(300, 41, Vec3::ZERO), 4),
     ]
 }
 
@@ -1700,7 +1758,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 230/230 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 240/240 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -2315,6 +2373,45 @@ mod tests {
                 _ => Reference.obb_overlaps(a, b),
             }
         }
+
+        fn best_first_nearest(
+            &self,
+            tree: &Bvh<Aabb>,
+            prims: &[Aabb],
+            p: Vec3,
+        ) -> Option<(u32, f32, usize)> {
+            match self.0 {
+                // Depth-first over every node: the right answer, all the work.
+                57 => {
+                    let best = Reference.best_first_nearest(tree, prims, p)?;
+                    Some((best.0, best.1, tree.nodes().len()))
+                }
+                // Greedy: into the nearer child down to one leaf, whose
+                // primitive is near but not always the nearest.
+                58 => {
+                    let nodes = tree.nodes();
+                    let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+                    let mut i = 0usize;
+                    let mut taken = 0;
+                    loop {
+                        taken += 1;
+                        let node = nodes.get(i)?;
+                        match node.children() {
+                            Some((l, r)) => {
+                                let (dl, dr) =
+                                    (dist(&nodes[l as usize].bv), dist(&nodes[r as usize].bv));
+                                i = if dl <= dr { l } else { r } as usize;
+                            }
+                            None => {
+                                let k = tree.indices()[node.first as usize];
+                                return Some((k, dist(&prims[k as usize]), taken));
+                            }
+                        }
+                    }
+                }
+                _ => Reference.best_first_nearest(tree, prims, p),
+            }
+        }
     }
 
     #[test]
@@ -2376,6 +2473,8 @@ mod tests {
             (54, 20),
             (55, 21),
             (56, 21),
+            (57, 22),
+            (58, 22),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

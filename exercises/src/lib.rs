@@ -197,6 +197,19 @@ pub trait Exercises {
     /// one of fifteen axes (A's three, B's three, and the nine cross products
     /// of an axis of A with one of B). Touching counts as overlapping.
     fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool;
+
+    /// Exercise 22: best-first search for the primitive box nearest to `p`
+    /// (distance from a point to a box: 0 inside). Take nodes from a
+    /// priority queue ordered by their box's distance to `p`, nearest
+    /// first, and stop once the nearest waiting node is farther than the best
+    /// primitive found. Return the primitive, its distance, and how many
+    /// nodes were taken from the queue; `None` for the empty tree.
+    fn best_first_nearest(
+        &self,
+        tree: &Bvh<Aabb>,
+        prims: &[Aabb],
+        p: Vec3,
+    ) -> Option<(u32, f32, usize)>;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

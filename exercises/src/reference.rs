@@ -336,4 +336,47 @@ impl Exercises for Reference {
     fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool {
         BoundingVolume::overlaps(a, b)
     }
+
+    fn best_first_nearest(
+        &self,
+        tree: &Bvh<Aabb>,
+        prims: &[Aabb],
+        p: Vec3,
+    ) -> Option<(u32, f32, usize)> {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        // Distances are non-negative, so their bit patterns order like them.
+        let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+        let nodes = tree.nodes();
+        let mut queue = BinaryHeap::new();
+        if let Some(root) = nodes.first() {
+            queue.push(Reverse((dist(&root.bv).to_bits(), 0u32)));
+        }
+        let (mut best, mut taken) = (None::<(u32, f32)>, 0);
+        while let Some(Reverse((d, i))) = queue.pop() {
+            if best.is_some_and(|(_, b)| f32::from_bits(d) > b) {
+                break;
+            }
+            taken += 1;
+            let node = &nodes[i as usize];
+            match node.children() {
+                Some((l, r)) => {
+                    for c in [l, r] {
+                        queue.push(Reverse((dist(&nodes[c as usize].bv).to_bits(), c)));
+                    }
+                }
+                None => {
+                    for &k in
+                        &tree.indices()[node.first as usize..(node.first + node.count) as usize]
+                    {
+                        let d = dist(&prims[k as usize]);
+                        if best.is_none_or(|(j, b)| d < b || (d == b && k < j)) {
+                            best = Some((k, d));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(k, d)| (k, d, taken))
+    }
 }

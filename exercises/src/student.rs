@@ -250,4 +250,18 @@ impl Exercises for Student {
         let _ = (a, b);
         todo!("exercise 21")
     }
+
+    fn best_first_nearest(
+        &self,
+        tree: &Bvh<Aabb>,
+        prims: &[Aabb],
+        p: Vec3,
+    ) -> Option<(u32, f32, usize)> {
+        // Hint: `std::collections::BinaryHeap` is a max-heap: wrap keys in
+        // `std::cmp::Reverse`; an `f32` is not `Ord`, but a non-negative
+        // one's `to_bits()` sorts the same way. The distance from `p` to a
+        // box is the length of `max(min - p, p - max, 0)`.
+        let _ = (tree, prims, p);
+        todo!("exercise 22")
+    }
 }
