@@ -1210,7 +1210,7 @@ pub fn checks() -> Vec<Check> {
                     let tree = t.bvh();
                     (0..40).all(|_| {
                         let p = r.point(14.0, Vec3::new(4.5, 4.5, 1.0));
-                        let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+                        let dist = |b: &Aabb| b.distance_squared(p).sqrt();
                         let want = t.prims.iter().map(dist).fold(f32::INFINITY, f32::min);
                         match e.best_first_nearest(&tree, &t.prims, p) {
                             None => t.prims.is_empty(),
@@ -2390,7 +2390,7 @@ mod tests {
                 // primitive is near but not always the nearest.
                 58 => {
                     let nodes = tree.nodes();
-                    let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+                    let dist = |b: &Aabb| b.distance_squared(p).sqrt();
                     let mut i = 0usize;
                     let mut taken = 0;
                     loop {

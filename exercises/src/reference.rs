@@ -346,7 +346,7 @@ impl Exercises for Reference {
         use std::cmp::Reverse;
         use std::collections::BinaryHeap;
         // Distances are non-negative, so their bit patterns order like them.
-        let dist = |b: &Aabb| (b.min - p).max(p - b.max).max(Vec3::ZERO).length();
+        let dist = |b: &Aabb| b.distance_squared(p).sqrt();
         let nodes = tree.nodes();
         let mut queue = BinaryHeap::new();
         if let Some(root) = nodes.first() {

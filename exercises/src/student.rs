@@ -259,8 +259,8 @@ impl Exercises for Student {
     ) -> Option<(u32, f32, usize)> {
         // Hint: `std::collections::BinaryHeap` is a max-heap: wrap keys in
         // `std::cmp::Reverse`; an `f32` is not `Ord`, but a non-negative
-        // one's `to_bits()` sorts the same way. The distance from `p` to a
-        // box is the length of `max(min - p, p - max, 0)`.
+        // one's `to_bits()` sorts the same way. `Aabb::distance_squared`
+        // gives a box's (squared) distance to `p`.
         let _ = (tree, prims, p);
         todo!("exercise 22")
     }
