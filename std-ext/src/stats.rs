@@ -129,6 +129,11 @@ fn run_with<B: BoundingVolume>(
     let memory = vec![
         MemoryLine {
             layout: "canonical",
+            bytes: Ok(tree.plain_view().bytes()),
+        },
+        // Every layout can keep them too, at the same cost.
+        MemoryLine {
+            layout: "canonical + leaf bounds",
             bytes: Ok(v.bytes()),
         },
         MemoryLine {
@@ -256,6 +261,7 @@ mod tests {
         assert_eq!(r.nodes, 2 * mesh.len() - 1);
         assert!(r.balance > 0.9 && r.balance <= 1.0 + 1e-9, "{}", r.balance);
         assert_eq!(r.memory[0].bytes, Ok(r.nodes * 32 + 4 * mesh.len()));
+        assert_eq!(r.memory[1].bytes, Ok(r.nodes * 32 + 28 * mesh.len()));
         assert!(render(&r).contains("quantized-4"));
         assert!(run(
             "rock",

@@ -239,6 +239,14 @@ pub fn check_against_brute_force<B: BoundingVolume>(
         prop_assert_eq!(&got, &want, "pairs, {} {:?} {:?}", B::NAME, rule, cfg);
     }
     check_pairs(&ta, a, &tb, b, &Same, Bounds, cfg)?;
+    // The same trees with their primitives' bounds kept in leaf order: the
+    // leaf step reads those instead of the primitives (on one side or both).
+    let (mut ba, mut bb) = (vec![Aabb::EMPTY; a.len()], vec![Aabb::EMPTY; b.len()]);
+    let la = ta.with_leaf_bounds(a, &mut ba).unwrap();
+    let lb = tb.with_leaf_bounds(b, &mut bb).unwrap();
+    check_pairs(&la, a, &lb, b, &Same, Bounds, cfg)?;
+    check_pairs(&la, a, &tb, b, &Same, bvhkit::Exact, cfg)?;
+    check_pairs(&ta, a, &lb, b, &Same, Bounds, cfg)?;
     Ok(())
 }
 

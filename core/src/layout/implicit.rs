@@ -1,7 +1,7 @@
 //! The pointerless array: a complete binary tree stored level by level.
 
-use super::check_capacity;
-use crate::bv::BoundingVolume;
+use super::{check_capacity, Leaves};
+use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Bvh, Content, Hierarchy, Kids};
 use crate::Error;
 
@@ -64,7 +64,7 @@ impl<B: BoundingVolume> Slot<B> {
 #[derive(Clone, Copy, Debug)]
 pub struct Implicit<'a, B> {
     slots: &'a [Slot<B>],
-    indices: &'a [u32],
+    leaves: Leaves<'a>,
     depth: u32,
     nodes: u32,
 }
@@ -123,7 +123,7 @@ impl<'a, B: BoundingVolume> Implicit<'a, B> {
         let out: &'a [Slot<B>] = out;
         Ok(Implicit {
             slots: out,
-            indices: bvh.indices(),
+            leaves: Leaves::of(bvh),
             depth: bvh.depth() as u32,
             nodes: bvh.node_count() as u32,
         })
@@ -179,9 +179,14 @@ impl<B: BoundingVolume> Hierarchy for Implicit<'_, B> {
             INNER => Content::Inner(Kids::two(2 * node + 1, 2 * node + 2)),
             span => {
                 let (first, count) = ((span >> 8) as usize, (span & 0xFF) as usize);
-                Content::Leaf(&self.indices[first..first + count])
+                Content::Leaf(self.leaves.ids(first, count))
             }
         }
+    }
+
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        self.leaves.bounds_of(self.content(node))
     }
 
     fn depth(&self) -> usize {
@@ -189,7 +194,7 @@ impl<B: BoundingVolume> Hierarchy for Implicit<'_, B> {
     }
 
     fn primitive_count(&self) -> usize {
-        self.indices.len()
+        self.leaves.len()
     }
 
     fn node_count(&self) -> usize {
@@ -197,6 +202,6 @@ impl<B: BoundingVolume> Hierarchy for Implicit<'_, B> {
     }
 
     fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.slots) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.slots) + self.leaves.bytes()
     }
 }

@@ -35,11 +35,61 @@ pub use trinode::{TriNode, TriNodes};
 pub use wide::{Wide, WideNode};
 
 use crate::builders::enclose;
-use crate::bv::BoundingVolume;
+use crate::bv::{Aabb, BoundingVolume};
 use crate::query::stack::Stack;
 use crate::tree::hierarchy::DFS_STACK;
 use crate::tree::{Bvh, Content, Hierarchy, Node, MAX_CHILDREN, MAX_DEPTH};
 use crate::Error;
+
+/// The leaf storage a layout shares with the [`Bvh`] it was converted from:
+/// the primitive index array and, if the tree keeps them
+/// ([`Bvh::with_leaf_bounds`]), the primitives' bounds side by side with it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Leaves<'a> {
+    indices: &'a [u32],
+    bounds: &'a [Aabb],
+}
+
+impl<'a> Leaves<'a> {
+    pub(crate) fn of<B: BoundingVolume>(bvh: &Bvh<'a, B>) -> Self {
+        Leaves {
+            indices: bvh.indices(),
+            bounds: bvh.leaf_bounds().unwrap_or(&[]),
+        }
+    }
+
+    /// The ids of the leaf whose run starts at `first`.
+    #[inline(always)]
+    pub(crate) fn ids(&self, first: usize, count: usize) -> &'a [u32] {
+        &self.indices[first..first + count]
+    }
+
+    /// The kept bounds of a leaf's ids (`content` is the layout's answer for
+    /// the node). A leaf's ids are always a run of the shared index array,
+    /// so the run's start is the ids' offset from the array's start; layouts
+    /// thereby need no second decoding of their records.
+    #[inline(always)]
+    pub(crate) fn bounds_of(&self, content: Content<'_>) -> Option<&'a [Aabb]> {
+        let Content::Leaf(ids) = content else {
+            return None;
+        };
+        if self.bounds.is_empty() {
+            return None;
+        }
+        let offset = (ids.as_ptr() as usize).checked_sub(self.indices.as_ptr() as usize)?;
+        let first = offset / core::mem::size_of::<u32>();
+        self.bounds.get(first..first + ids.len())
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Bytes of the index array and the kept bounds.
+    pub(crate) fn bytes(&self) -> usize {
+        core::mem::size_of_val(self.indices) + core::mem::size_of_val(self.bounds)
+    }
+}
 
 /// Checks a caller buffer against what a conversion needs.
 pub(crate) fn check_capacity(needed: usize, available: usize) -> Result<(), Error> {

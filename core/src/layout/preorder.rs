@@ -1,7 +1,7 @@
 //! Preorder (depth-first) order: the left child follows its parent.
 
-use super::check_capacity;
-use crate::bv::BoundingVolume;
+use super::{check_capacity, Leaves};
+use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_DEPTH};
 use crate::Error;
 
@@ -110,7 +110,7 @@ impl<B: BoundingVolume, O: Offset> PreNode<B, O> {
 #[derive(Clone, Copy, Debug)]
 pub struct Preorder<'a, B, O> {
     records: &'a [PreNode<B, O>],
-    indices: &'a [u32],
+    leaves: Leaves<'a>,
     depth: u32,
 }
 
@@ -172,7 +172,7 @@ impl<'a, B: BoundingVolume, O: Offset> Preorder<'a, B, O> {
         let records: &'a [PreNode<B, O>] = &out[..next];
         Ok(Preorder {
             records,
-            indices: bvh.indices(),
+            leaves: Leaves::of(bvh),
             depth: bvh.depth() as u32,
         })
     }
@@ -204,8 +204,13 @@ impl<B: BoundingVolume, O: Offset> Hierarchy for Preorder<'_, B, O> {
             Content::Inner(Kids::two(node + 1, r.link.get() as u32))
         } else {
             let first = r.link.get();
-            Content::Leaf(&self.indices[first..first + r.count.get()])
+            Content::Leaf(self.leaves.ids(first, r.count.get()))
         }
+    }
+
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        self.leaves.bounds_of(self.content(node))
     }
 
     fn depth(&self) -> usize {
@@ -213,7 +218,7 @@ impl<B: BoundingVolume, O: Offset> Hierarchy for Preorder<'_, B, O> {
     }
 
     fn primitive_count(&self) -> usize {
-        self.indices.len()
+        self.leaves.len()
     }
 
     fn node_count(&self) -> usize {
@@ -221,6 +226,6 @@ impl<B: BoundingVolume, O: Offset> Hierarchy for Preorder<'_, B, O> {
     }
 
     fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.records) + self.leaves.bytes()
     }
 }

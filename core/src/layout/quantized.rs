@@ -1,6 +1,6 @@
 //! Quantized 4-wide records: child boxes as 8-bit integers in the parent's frame.
 
-use super::{fill_wide, wide::measure_depth, wide_walk};
+use super::{fill_wide, wide::measure_depth, wide_walk, Leaves};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
@@ -151,7 +151,7 @@ impl QuantNode {
 #[derive(Clone, Copy, Debug)]
 pub struct QuantizedWide<'a> {
     records: &'a [QuantNode],
-    indices: &'a [u32],
+    leaves: Leaves<'a>,
     depth: u32,
     nodes: u32,
 }
@@ -208,7 +208,7 @@ impl<'a> QuantizedWide<'a> {
         let records: &'a [QuantNode] = &out[..needed];
         let mut q = QuantizedWide {
             records,
-            indices: bvh.indices(),
+            leaves: Leaves::of(bvh),
             depth: 0,
             nodes: count,
         };
@@ -243,7 +243,7 @@ impl Hierarchy for QuantizedWide<'_> {
         let (link, count) = (r.child[k], r.count[k]);
         if count != 0 {
             let first = link as usize;
-            return Content::Leaf(&self.indices[first..first + count as usize]);
+            return Content::Leaf(self.leaves.ids(first, count as usize));
         }
         let base = link * 4;
         let len = 2 + ((r.kids >> (2 * k)) & 3) as usize;
@@ -255,12 +255,17 @@ impl Hierarchy for QuantizedWide<'_> {
         self.records[(node >> 2) as usize].count[(node & 3) as usize] != 0
     }
 
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        self.leaves.bounds_of(self.content(node))
+    }
+
     fn depth(&self) -> usize {
         self.depth as usize
     }
 
     fn primitive_count(&self) -> usize {
-        self.indices.len()
+        self.leaves.len()
     }
 
     fn node_count(&self) -> usize {
@@ -268,6 +273,6 @@ impl Hierarchy for QuantizedWide<'_> {
     }
 
     fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.records) + self.leaves.bytes()
     }
 }

@@ -1,7 +1,7 @@
 //! Tri-nodes: a parent and its two children fused into one record.
 
-use super::check_capacity;
-use crate::bv::BoundingVolume;
+use super::{check_capacity, Leaves};
+use crate::bv::{Aabb, BoundingVolume};
 use crate::query::stack::Stack;
 use crate::tree::hierarchy::DFS_STACK;
 use crate::tree::{Bvh, Content, Hierarchy, Kids};
@@ -64,7 +64,7 @@ impl<B: BoundingVolume> TriNode<B> {
 #[derive(Clone, Copy, Debug)]
 pub struct TriNodes<'a, B> {
     records: &'a [TriNode<B>],
-    indices: &'a [u32],
+    leaves: Leaves<'a>,
     depth: u32,
     nodes: u32,
 }
@@ -106,7 +106,7 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
         if bvh.is_empty() {
             return Ok(TriNodes {
                 records: &out[..0],
-                indices: bvh.indices(),
+                leaves: Leaves::of(bvh),
                 depth: 0,
                 nodes: 0,
             });
@@ -150,7 +150,7 @@ impl<'a, B: BoundingVolume> TriNodes<'a, B> {
         let records: &'a [TriNode<B>] = &out[..next as usize];
         Ok(TriNodes {
             records,
-            indices: bvh.indices(),
+            leaves: Leaves::of(bvh),
             depth: bvh.depth() as u32,
             nodes: bvh.node_count() as u32,
         })
@@ -198,10 +198,15 @@ impl<B: BoundingVolume> Hierarchy for TriNodes<'_, B> {
         };
         if leaf {
             let first = words[0] as usize;
-            Content::Leaf(&self.indices[first..first + words[1] as usize])
+            Content::Leaf(self.leaves.ids(first, words[1] as usize))
         } else {
             Content::Inner(Kids::two(words[0] * 4, words[1] * 4))
         }
+    }
+
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        self.leaves.bounds_of(self.content(node))
     }
 
     fn depth(&self) -> usize {
@@ -209,7 +214,7 @@ impl<B: BoundingVolume> Hierarchy for TriNodes<'_, B> {
     }
 
     fn primitive_count(&self) -> usize {
-        self.indices.len()
+        self.leaves.len()
     }
 
     fn node_count(&self) -> usize {
@@ -217,6 +222,6 @@ impl<B: BoundingVolume> Hierarchy for TriNodes<'_, B> {
     }
 
     fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.records) + self.leaves.bytes()
     }
 }

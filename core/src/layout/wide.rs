@@ -1,6 +1,6 @@
 //! The 4-wide layout: four children's boxes side by side.
 
-use super::{fill_wide, wide_walk};
+use super::{fill_wide, wide_walk, Leaves};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
@@ -84,7 +84,7 @@ impl WideNode {
 #[derive(Clone, Copy, Debug)]
 pub struct Wide<'a> {
     records: &'a [WideNode],
-    indices: &'a [u32],
+    leaves: Leaves<'a>,
     depth: u32,
     nodes: u32,
 }
@@ -138,7 +138,7 @@ impl<'a> Wide<'a> {
         let records: &'a [WideNode] = &out[..needed];
         let mut wide = Wide {
             records,
-            indices: bvh.indices(),
+            leaves: Leaves::of(bvh),
             depth: 0,
             nodes: count,
         };
@@ -196,7 +196,7 @@ impl Hierarchy for Wide<'_> {
         let (link, count) = (r.child[k], r.count[k]);
         if count & INNER == 0 {
             let first = link as usize;
-            return Content::Leaf(&self.indices[first..first + count as usize]);
+            return Content::Leaf(self.leaves.ids(first, count as usize));
         }
         let base = link * 4;
         let len = (count & !INNER) as usize;
@@ -224,12 +224,17 @@ impl Hierarchy for Wide<'_> {
         Some(&self.records[(first >> 2) as usize].boxes)
     }
 
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        self.leaves.bounds_of(self.content(node))
+    }
+
     fn depth(&self) -> usize {
         self.depth as usize
     }
 
     fn primitive_count(&self) -> usize {
-        self.indices.len()
+        self.leaves.len()
     }
 
     fn node_count(&self) -> usize {
@@ -237,6 +242,6 @@ impl Hierarchy for Wide<'_> {
     }
 
     fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.records) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.records) + self.leaves.bytes()
     }
 }

@@ -13,7 +13,7 @@
 
 use super::stack::Stack;
 use super::{Decision, Descent, DescentRule, Open, Tally};
-use crate::bv::BoundingVolume;
+use crate::bv::{Aabb, BoundingVolume};
 use crate::narrow::Intersects;
 use crate::primitive::Primitive;
 use crate::transform::{Rigid, Transform};
@@ -531,12 +531,20 @@ struct PrimitivePairs<'q, P, Q, F, X, S> {
     sink: S,
 }
 
+/// A leaf as the leaf-pair step sees it: its primitive ids and, if the
+/// tree keeps them ([`Hierarchy::leaf_bounds`]), their bounds side by side.
+#[derive(Clone, Copy)]
+struct Leaf<'a> {
+    ids: &'a [u32],
+    bounds: Option<&'a [Aabb]>,
+}
+
 /// Decides every primitive pair of two leaves.
 trait PairStep {
     /// Every pair of `la` (A's primitives) and `lb` (B's); each pair counts
     /// as one primitive test (`Np`) whether the box prefilter or the answer
     /// settled it, so the counts do not depend on how the test is vectorised.
-    fn leaf_pair<T: Tally>(&mut self, la: &[u32], lb: &[u32], tally: &mut T) -> Flow;
+    fn leaf_pair<T: Tally>(&mut self, la: Leaf<'_>, lb: Leaf<'_>, tally: &mut T) -> Flow;
 }
 
 impl<P, Q, F, X, S> PairStep for PrimitivePairs<'_, P, Q, F, X, S>
@@ -548,15 +556,28 @@ where
     S: FnMut(u32, u32) -> Flow,
 {
     #[inline(always)]
-    fn leaf_pair<T: Tally>(&mut self, la: &[u32], lb: &[u32], tally: &mut T) -> Flow {
-        tally.prim_tests((la.len() * lb.len()).min(u32::MAX as usize) as u32);
-        for run in la.chunks(MAX_CHILDREN) {
+    fn leaf_pair<T: Tally>(&mut self, la: Leaf<'_>, lb: Leaf<'_>, tally: &mut T) -> Flow {
+        let (ids_a, ids_b) = (la.ids, lb.ids);
+        tally.prim_tests((ids_a.len() * ids_b.len()).min(u32::MAX as usize) as u32);
+        // B's kept bounds are in B's frame: a moved B places each primitive.
+        let kept_b = if F::MOVES { None } else { lb.bounds };
+        for (r, run) in ids_a.chunks(MAX_CHILDREN).enumerate() {
             let mut four = Boxes4::EMPTY;
-            for (k, &p) in run.iter().enumerate() {
-                four.set(k, &self.pa[p as usize].bounds());
+            match la.bounds {
+                Some(bounds) => {
+                    let kept = bounds.iter().skip(r * MAX_CHILDREN);
+                    for (k, b) in kept.take(run.len()).enumerate() {
+                        four.set(k, b);
+                    }
+                }
+                None => {
+                    for (k, &p) in run.iter().enumerate() {
+                        four.set(k, &self.pa[p as usize].bounds());
+                    }
+                }
             }
             let live = (1u32 << run.len()) - 1;
-            for &q in lb {
+            for (m, &q) in ids_b.iter().enumerate() {
                 let given = &self.pb[q as usize];
                 let moved;
                 let placed = if F::MOVES {
@@ -565,7 +586,11 @@ where
                 } else {
                     given
                 };
-                let mut mask = four.overlapping(&placed.bounds()) & live;
+                let bounds = match kept_b.and_then(|b| b.get(m)) {
+                    Some(b) => *b,
+                    None => placed.bounds(),
+                };
+                let mut mask = four.overlapping(&bounds) & live;
                 while mask != 0 {
                     let p = run[mask.trailing_zeros() as usize];
                     mask &= mask - 1;
@@ -650,9 +675,18 @@ where
         out
     }
 
-    /// Every primitive pair of two leaves.
+    /// Every primitive pair of two leaves: A's node `i` holding `la`, B's
+    /// node `j` holding `lb`.
     #[inline(always)]
-    fn leaves(&mut self, la: &[u32], lb: &[u32]) -> Flow {
+    fn leaves(&mut self, (i, la): (u32, &[u32]), (j, lb): (u32, &[u32])) -> Flow {
+        let la = Leaf {
+            ids: la,
+            bounds: self.a.leaf_bounds(i),
+        };
+        let lb = Leaf {
+            ids: lb,
+            bounds: self.b.leaf_bounds(j),
+        };
         self.leaf.leaf_pair(la, lb, &mut self.tally)
     }
 
@@ -711,7 +745,7 @@ where
         let (open, known) = match (a_leaf, b_leaf) {
             (true, true) => {
                 return match (a.content(i), b.content(j)) {
-                    (Content::Leaf(la), Content::Leaf(lb)) => self.leaves(la, lb),
+                    (Content::Leaf(la), Content::Leaf(lb)) => self.leaves((i, la), (j, lb)),
                     _ => ControlFlow::Continue(()),
                 };
             }
@@ -808,7 +842,7 @@ where
             let (a_leaf, b_leaf) = (a.is_leaf(i), b.is_leaf(j));
             if a_leaf && b_leaf {
                 if let (Content::Leaf(la), Content::Leaf(lb)) = (a.content(i), b.content(j)) {
-                    if self.leaves(la, lb).is_break() {
+                    if self.leaves((i, la), (j, lb)).is_break() {
                         return Ok(ControlFlow::Break(()));
                     }
                 }
@@ -952,7 +986,7 @@ where
             while let Some(j) = sb.pop() {
                 match b.content(j) {
                     Content::Leaf(lb) => {
-                        if self.leaves(la, lb).is_break() {
+                        if self.leaves((i, la), (j, lb)).is_break() {
                             return Ok(ControlFlow::Break(()));
                         }
                     }

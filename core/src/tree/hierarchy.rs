@@ -205,6 +205,17 @@ pub trait Hierarchy {
         matches!(self.content(node), Content::Leaf(_))
     }
 
+    /// The bounds of a leaf's primitives, side by side with the ids of its
+    /// [`Content::Leaf`] (entry `k` bounds id `k`), if the representation
+    /// keeps them ([`Bvh::with_leaf_bounds`]). They must equal each
+    /// primitive's [`bounds`](crate::Primitive::bounds). The default, `None`,
+    /// makes queries read the primitives.
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        let _ = node;
+        None
+    }
+
     /// The children's boxes side by side, if the layout stores them so. They
     /// must equal `self.bv(c).aabb()` for each child `c` (slots past the
     /// children are ignored). The default, `None`, makes queries fetch them
@@ -285,6 +296,13 @@ impl<B: BoundingVolume> Hierarchy for Bvh<'_, B> {
     #[inline(always)]
     fn is_leaf(&self, node: u32) -> bool {
         self.nodes()[node as usize].is_leaf()
+    }
+
+    #[inline(always)]
+    fn leaf_bounds(&self, node: u32) -> Option<&[Aabb]> {
+        let all = Bvh::leaf_bounds(self)?;
+        let n = &self.nodes()[node as usize];
+        all.get(n.first as usize..n.first as usize + n.count as usize)
     }
 
     fn depth(&self) -> usize {

@@ -14,7 +14,7 @@ mod validate;
 
 pub use hierarchy::{Boxes4, Content, Hierarchy, Kids, MAX_CHILDREN};
 
-use crate::bv::BoundingVolume;
+use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Primitive;
 use crate::Error;
 
@@ -124,6 +124,9 @@ pub(crate) fn index_bound_of(indices: &[u32]) -> u32 {
 pub struct Bvh<'a, B> {
     nodes: &'a [Node<B>],
     indices: &'a [u32],
+    /// `leaf_bounds[k]` is the bounds of primitive `indices[k]` (leaf
+    /// order), or the slice is empty: see [`Bvh::with_leaf_bounds`].
+    leaf_bounds: &'a [Aabb],
     depth: u32,
     /// The largest primitive index a leaf names, plus one: the shortest
     /// primitive slice a query can take. Builders number primitives `0..n`
@@ -138,6 +141,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         Bvh {
             nodes,
             indices,
+            leaf_bounds: &[],
             depth,
             bound: indices.len() as u32,
         }
@@ -168,9 +172,33 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         Bvh {
             nodes,
             indices,
+            leaf_bounds: &[],
             depth: depth.min(u32::MAX as usize) as u32,
             bound: index_bound_of(indices),
         }
+    }
+
+    /// [`from_raw_parts`](Self::from_raw_parts) with the primitives' bounds
+    /// in leaf order, as [`with_leaf_bounds`](Self::with_leaf_bounds) wrote
+    /// them (kept elsewhere, for instance in a `Vec` by the std side). Their
+    /// values are trusted like the rest of the raw parts; only their length is
+    /// checked (one per index entry, or none).
+    pub fn from_raw_parts_with_bounds(
+        nodes: &'a [Node<B>],
+        indices: &'a [u32],
+        leaf_bounds: &'a [Aabb],
+        depth: usize,
+    ) -> Result<Self, Error> {
+        if !leaf_bounds.is_empty() && leaf_bounds.len() != indices.len() {
+            return Err(Error::PrimitiveCountMismatch {
+                tree: indices.len(),
+                given: leaf_bounds.len(),
+            });
+        }
+        Ok(Bvh {
+            leaf_bounds,
+            ..Bvh::from_raw_parts(nodes, indices, depth)
+        })
     }
 
     /// Re-opens a tree from storage kept elsewhere (a file, a previous build),
@@ -186,6 +214,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         let bvh = Bvh {
             nodes,
             indices,
+            leaf_bounds: &[],
             depth,
             bound: index_bound_of(indices),
         };
@@ -203,6 +232,68 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     #[inline]
     pub fn indices(&self) -> &'a [u32] {
         self.indices
+    }
+
+    /// The primitives' bounds in leaf order (entry `k` bounds primitive
+    /// `indices()[k]`), if attached by [`with_leaf_bounds`](Self::with_leaf_bounds).
+    #[inline]
+    pub fn leaf_bounds(&self) -> Option<&'a [Aabb]> {
+        (!self.leaf_bounds.is_empty()).then_some(self.leaf_bounds)
+    }
+
+    /// Writes every primitive's bounds into `out` in leaf order and keeps
+    /// them with the tree. Pair queries then test primitive pairs on these
+    /// boxes, read in the order the traversal meets the leaves, instead of
+    /// fetching each primitive from wherever the caller's slice holds it:
+    /// on large meshes those scattered reads are most of a pair query's time.
+    /// A [`Bounds`](crate::Bounds) answer in the same frame never touches
+    /// the primitives at all. Costs 24 bytes per primitive (`out` needs one
+    /// entry per index entry: [`primitive_count`](Self::primitive_count)).
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Node, Pairs, TopDown, Triangle};
+    /// use glam::Vec3;
+    /// let tris: Vec<Triangle> = (0..64).map(|i| {
+    ///     let o = Vec3::new((i % 8) as f32, (i / 8) as f32, 0.0);
+    ///     Triangle::new(o, o + Vec3::new(1.5, 0.0, 0.0), o + Vec3::new(0.0, 1.5, 0.0))
+    /// }).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+    /// let mut idx = vec![0; tris.len()];
+    /// let mut bounds = vec![Aabb::EMPTY; tris.len()];
+    /// let plain = TopDown::default().build(&tris, &mut nodes, &mut idx)?;
+    /// let before = Pairs::new(&plain, &tris, &plain, &tris).count()?;
+    /// let tree = plain.with_leaf_bounds(&tris, &mut bounds)?;
+    /// assert_eq!(tree.leaf_bounds().map(|b| b.len()), Some(64));
+    /// assert_eq!(Pairs::new(&tree, &tris, &tree, &tris).count()?, before);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn with_leaf_bounds<P: Primitive>(
+        self,
+        prims: &[P],
+        out: &'a mut [Aabb],
+    ) -> Result<Bvh<'a, B>, Error> {
+        let n = self.indices.len();
+        if out.len() < n {
+            return Err(Error::IndexCapacity {
+                needed: n,
+                available: out.len(),
+            });
+        }
+        if prims.len() < self.index_bound() {
+            return Err(Error::PrimitiveCountMismatch {
+                tree: self.index_bound(),
+                given: prims.len(),
+            });
+        }
+        let out = &mut out[..n];
+        for (slot, &p) in out.iter_mut().zip(self.indices) {
+            // In range: every index is below `index_bound`, checked above.
+            *slot = prims.get(p as usize).map_or(Aabb::EMPTY, Primitive::bounds);
+        }
+        Ok(Bvh {
+            leaf_bounds: out,
+            ..self
+        })
     }
 
     /// The root node; `None` for the empty tree (built from no primitives).
@@ -269,9 +360,11 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         }
     }
 
-    /// Bytes of node and index storage in use.
+    /// Bytes of node, index and leaf-bounds storage in use.
     pub fn bytes(&self) -> usize {
-        core::mem::size_of_val(self.nodes) + core::mem::size_of_val(self.indices)
+        core::mem::size_of_val(self.nodes)
+            + core::mem::size_of_val(self.indices)
+            + core::mem::size_of_val(self.leaf_bounds)
     }
 
     /// Scratch words [`validate`](Self::validate) needs: one bit per node or primitive.
@@ -286,9 +379,89 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
 
     /// Checks every invariant: the structure is a tree reaching each node once;
     /// each primitive is in exactly one leaf; each node's volume contains its
-    /// children's volumes and the bounds of its primitives.
+    /// children's volumes and the bounds of its primitives; attached leaf
+    /// bounds equal the primitives' bounds.
     pub fn validate<P: Primitive>(&self, prims: &[P], seen: &mut [u32]) -> Result<(), Error> {
         validate::structure(self.nodes, self.indices, prims.len(), seen)?;
         validate::containment(self, prims)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Pairs, TopDown, Triangle};
+    use glam::Vec3;
+
+    fn tris() -> [Triangle; 12] {
+        core::array::from_fn(|i| {
+            let o = Vec3::new(
+                (i % 4) as f32 * 0.8,
+                (i / 4) as f32 * 0.8,
+                (i % 3) as f32 * 0.1,
+            );
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+    }
+
+    #[test]
+    fn leaf_bounds_follow_the_index_array() {
+        let t = tris();
+        let mut nodes = [Node::<Aabb>::EMPTY; 23];
+        let mut idx = [0u32; 12];
+        let mut out = [Aabb::EMPTY; 12];
+        let tree = TopDown::default()
+            .with_max_leaf_size(3)
+            .build(&t, &mut nodes, &mut idx)
+            .unwrap();
+        let plain = Pairs::new(&tree, &t, &tree, &t).count().unwrap();
+        let kept = tree.with_leaf_bounds(&t, &mut out).unwrap();
+        let bounds = kept.leaf_bounds().unwrap();
+        for (b, &p) in bounds.iter().zip(kept.indices()) {
+            assert_eq!(*b, t[p as usize].bounds());
+        }
+        assert_eq!(kept.bytes(), tree.bytes() + 12 * 24);
+        assert_eq!(Pairs::new(&kept, &t, &kept, &t).count().unwrap(), plain);
+        let mut seen = [0u32; 1];
+        assert_eq!(kept.validate(&t, &mut seen), Ok(()));
+    }
+
+    #[test]
+    fn leaf_bounds_refuse_short_storage_and_wrong_values() {
+        let t = tris();
+        let mut nodes = [Node::<Aabb>::EMPTY; 23];
+        let mut idx = [0u32; 12];
+        let tree = TopDown::default().build(&t, &mut nodes, &mut idx).unwrap();
+        let mut short = [Aabb::EMPTY; 11];
+        assert_eq!(
+            tree.with_leaf_bounds(&t, &mut short).err(),
+            Some(Error::IndexCapacity {
+                needed: 12,
+                available: 11
+            })
+        );
+        let mut out = [Aabb::EMPTY; 12];
+        assert_eq!(
+            tree.with_leaf_bounds(&t[..5], &mut out).err(),
+            Some(Error::PrimitiveCountMismatch { tree: 12, given: 5 })
+        );
+        // Raw parts: the length is checked, the values by validation.
+        let mut wrong = [Aabb::EMPTY; 12];
+        let kept = tree.with_leaf_bounds(&t, &mut out).unwrap();
+        wrong.copy_from_slice(kept.leaf_bounds().unwrap());
+        assert!(
+            Bvh::from_raw_parts_with_bounds(tree.nodes(), tree.indices(), &wrong[..3], 3).is_err()
+        );
+        wrong[5].max.x += 1.0;
+        let forged =
+            Bvh::from_raw_parts_with_bounds(tree.nodes(), tree.indices(), &wrong, tree.depth())
+                .unwrap();
+        let mut seen = [0u32; 1];
+        assert_eq!(
+            forged.validate(&t, &mut seen),
+            Err(Error::InvalidTree(
+                "leaf bounds differ from the primitives' bounds"
+            ))
+        );
     }
 }

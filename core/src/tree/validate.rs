@@ -119,6 +119,7 @@ pub(super) fn containment<B: BoundingVolume, P: Primitive>(
             }
             None => {
                 for &p in bvh.leaf_primitives(node) {
+                    // `structure` checked every index against `prims`.
                     if !node.bv.contains_aabb(&prims[p as usize].bounds()) {
                         return Err(Error::InvalidTree(
                             "a leaf does not contain its primitive's bounds",
@@ -126,6 +127,18 @@ pub(super) fn containment<B: BoundingVolume, P: Primitive>(
                     }
                 }
             }
+        }
+    }
+    if let Some(bounds) = bvh.leaf_bounds() {
+        let same = bounds.len() == bvh.indices().len()
+            && bounds
+                .iter()
+                .zip(bvh.indices())
+                .all(|(b, &p)| prims.get(p as usize).is_some_and(|q| q.bounds() == *b));
+        if !same {
+            return Err(Error::InvalidTree(
+                "leaf bounds differ from the primitives' bounds",
+            ));
         }
     }
     Ok(())

@@ -84,7 +84,16 @@ fn check_moved<B: BoundingVolume>(
     let (ta, tb) = (open(&na, &ia, a), open(&nb, &ib, b));
     check_pairs(&ta, a, &tb, b, &m, Exact, cfg)?;
     check_pairs(&ta, a, &tb, b, &m, Bounds, cfg)?;
-    check_pairs(&ta, a, &tb, b, &Same, Exact, cfg)
+    check_pairs(&ta, a, &tb, b, &Same, Exact, cfg)?;
+    // Kept leaf bounds are in each tree's own frame: a moved B must place
+    // its primitives rather than use them.
+    let (mut ba, mut bb) = (vec![Aabb::EMPTY; a.len()], vec![Aabb::EMPTY; b.len()]);
+    let (la, lb) = (
+        ta.with_leaf_bounds(a, &mut ba).unwrap(),
+        tb.with_leaf_bounds(b, &mut bb).unwrap(),
+    );
+    check_pairs(&la, a, &lb, b, &m, Bounds, cfg)?;
+    check_pairs(&la, a, &lb, b, &m, Exact, cfg)
 }
 
 proptest! {

@@ -107,6 +107,13 @@ fn check_contains<H: Hierarchy>(h: &H, prims: &[Triangle], name: &str) {
                 for &p in here {
                     seen[p as usize] += 1;
                 }
+                // Kept leaf bounds, if any, are exactly the ids' bounds.
+                if let Some(kept) = h.leaf_bounds(n) {
+                    assert_eq!(kept.len(), here.len(), "node {n}: kept bounds per id");
+                    for (b, &p) in kept.iter().zip(here) {
+                        assert_eq!(*b, bvhkit::Primitive::bounds(&prims[p as usize]));
+                    }
+                }
                 here.to_vec()
             }
             Content::Inner(kids) => kids
@@ -233,7 +240,10 @@ fn run_all<B: BoundingVolume>(
     b: &[Triangle],
     probe: (f32, f32, f32),
 ) -> Result<(), TestCaseError> {
-    let ta = open(na, ia, a);
+    // Half the cases keep A's primitive bounds in leaf order: every layout
+    // shares them with the canonical tree (and its leaf step uses them).
+    let mut kept = vec![Aabb::EMPTY; a.len()];
+    let ta = keep_bounds(open(na, ia, a), a, &mut kept, probe.0 < 0.5);
     let tb = open(nb, ib, b);
     let motion = Rigid::new(
         Quat::from_rotation_y(0.3 + probe.0),
@@ -267,7 +277,8 @@ fn run_boxes(
     b: &[Triangle],
     probe: (f32, f32, f32),
 ) -> Result<(), TestCaseError> {
-    let ta = open(na, ia, a);
+    let mut kept = vec![Aabb::EMPTY; a.len()];
+    let ta = keep_bounds(open(na, ia, a), a, &mut kept, probe.0 >= 0.5);
     let tb = open(nb, ib, b);
     let motion = Rigid::new(
         Quat::from_rotation_x(0.7 - probe.2),
@@ -290,6 +301,22 @@ fn run_boxes(
     let wa = Wide::from_bvh(&ta, &mut sa.wide).unwrap();
     let qb = QuantizedWide::from_bvh(&tb, &mut sb.quant).unwrap();
     check_two(&wa, a, &qb, b, &motion, "wide x quantized")
+}
+
+/// `tree` with its primitives' bounds kept in `out`, if `keep`.
+fn keep_bounds<'a, B: BoundingVolume>(
+    tree: Bvh<'a, B>,
+    prims: &[Triangle],
+    out: &'a mut [Aabb],
+    keep: bool,
+) -> Bvh<'a, B> {
+    if keep {
+        let kept = tree.with_leaf_bounds(prims, out).unwrap();
+        assert!(kept.leaf_bounds().is_some() || prims.is_empty());
+        kept
+    } else {
+        tree
+    }
 }
 
 fn built<B: BoundingVolume>(cfg: &TopDown, prims: &[Triangle]) -> Result<Built<B>, TestCaseError> {
