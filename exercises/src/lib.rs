@@ -19,6 +19,7 @@ pub mod student;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
+    Triangle,
 };
 
 /// The exercises, one method each. Statements and hints are in the book
@@ -210,6 +211,17 @@ pub trait Exercises {
         prims: &[Aabb],
         p: Vec3,
     ) -> Option<(u32, f32, usize)>;
+
+    /// Exercise 23a: the primitives' bounds in leaf order. One box per entry
+    /// of the tree's index array: entry `k` bounds primitive
+    /// `tree.indices()[k]` (what `Bvh::with_leaf_bounds` keeps).
+    fn leaf_order_bounds(&self, tree: &Bvh<Aabb>, prims: &[Triangle]) -> Vec<Aabb>;
+
+    /// Exercise 23b: the candidate pairs of one leaf pair, from kept bounds.
+    /// Each leaf is its primitive ids and, side by side, their boxes. Return
+    /// every `(id of a, id of b)` whose boxes overlap (touching counts), A's
+    /// ids in their order, for each of them B's ids in theirs.
+    fn leaf_pair_candidates(&self, a: (&[u32], &[Aabb]), b: (&[u32], &[Aabb])) -> Vec<(u32, u32)>;
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

@@ -4,7 +4,7 @@ use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
-    PairTraversal, Pairs, Partition, Sphere,
+    PairTraversal, Pairs, Partition, Primitive, Sphere, Triangle,
 };
 
 /// The reference implementation: scores 100%.
@@ -378,5 +378,28 @@ impl Exercises for Reference {
             }
         }
         best.map(|(k, d)| (k, d, taken))
+    }
+
+    fn leaf_order_bounds(&self, tree: &Bvh<Aabb>, prims: &[Triangle]) -> Vec<Aabb> {
+        tree.indices()
+            .iter()
+            .map(|&p| prims[p as usize].bounds())
+            .collect()
+    }
+
+    fn leaf_pair_candidates(
+        &self,
+        (ids_a, boxes_a): (&[u32], &[Aabb]),
+        (ids_b, boxes_b): (&[u32], &[Aabb]),
+    ) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for (&p, x) in ids_a.iter().zip(boxes_a) {
+            for (&q, y) in ids_b.iter().zip(boxes_b) {
+                if x.overlaps(y) {
+                    out.push((p, q));
+                }
+            }
+        }
+        out
     }
 }

@@ -5,6 +5,7 @@ use crate::Exercises;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
+    Triangle,
 };
 
 /// Your implementation of the exercises.
@@ -263,5 +264,19 @@ impl Exercises for Student {
         // gives a box's (squared) distance to `p`.
         let _ = (tree, prims, p);
         todo!("exercise 22")
+    }
+
+    fn leaf_order_bounds(&self, tree: &Bvh<Aabb>, prims: &[Triangle]) -> Vec<Aabb> {
+        // Hint: walk `tree.indices()` in order; `bvhkit::Primitive::bounds`
+        // gives a triangle's box.
+        let _ = (tree, prims);
+        todo!("exercise 23a")
+    }
+
+    fn leaf_pair_candidates(&self, a: (&[u32], &[Aabb]), b: (&[u32], &[Aabb])) -> Vec<(u32, u32)> {
+        // Hint: zip each leaf's ids with its boxes; report ids, not
+        // positions; `Aabb::overlaps` counts touching boxes.
+        let _ = (a, b);
+        todo!("exercise 23b")
     }
 }
