@@ -245,6 +245,21 @@ pub fn check_against_brute_force<B: BoundingVolume>(
     let la = ta.with_leaf_bounds(a, &mut ba).unwrap();
     let lb = tb.with_leaf_bounds(b, &mut bb).unwrap();
     check_pairs(&la, a, &lb, b, &Same, Bounds, cfg)?;
+    // Region queries read the kept bounds too, in every order.
+    prop_assert_eq!(query(&la, a, region), reference(a, region));
+    prop_assert_eq!(query(&la, a, &ball), reference(a, &ball));
+    let mut queue = vec![0u32; la.breadth_first_queue()];
+    for order in 0..3 {
+        let order = match order {
+            0 => bvhkit::Order::DepthFirst,
+            1 => bvhkit::Order::Recursive,
+            _ => bvhkit::Order::BreadthFirst(&mut queue),
+        };
+        let mut got = Vec::new();
+        la.search(a, &slab, order, (), |i| got.push(i)).unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &reference(a, &slab), "kept bounds, 14-dop region");
+    }
     check_pairs(&la, a, &tb, b, &Same, bvhkit::Exact, cfg)?;
     check_pairs(&ta, a, &lb, b, &Same, Bounds, cfg)?;
     Ok(())

@@ -679,13 +679,15 @@ where
     /// node `j` holding `lb`.
     #[inline(always)]
     fn leaves(&mut self, (i, la): (u32, &[u32]), (j, lb): (u32, &[u32])) -> Flow {
+        // One box per id, as the trait promises; anything else reads the
+        // primitives rather than drop a pair.
         let la = Leaf {
             ids: la,
-            bounds: self.a.leaf_bounds(i),
+            bounds: self.a.leaf_bounds(i).filter(|b| b.len() == la.len()),
         };
         let lb = Leaf {
             ids: lb,
-            bounds: self.b.leaf_bounds(j),
+            bounds: self.b.leaf_bounds(j).filter(|b| b.len() == lb.len()),
         };
         self.leaf.leaf_pair(la, lb, &mut self.tally)
     }

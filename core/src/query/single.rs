@@ -107,6 +107,38 @@ pub enum Order<'q> {
     BreadthFirst(&'q mut [u32]),
 }
 
+/// Calls `f` with each primitive of leaf `n` (ids `here`) whose bounds
+/// overlap `region`; returns how many. Reads the tree's kept bounds when it
+/// has them ([`Hierarchy::leaf_bounds`]), else the primitives.
+#[inline(always)]
+fn leaf_overlapping<H: Hierarchy + ?Sized, P: Primitive, R: Region>(
+    h: &H,
+    n: u32,
+    here: &[u32],
+    prims: &[P],
+    region: &R,
+    f: &mut impl FnMut(u32),
+) -> u32 {
+    let mut found = 0;
+    let mut visit = |p: u32, b: &Aabb| {
+        if region.overlaps_aabb(b) {
+            f(p);
+            found += 1;
+        }
+    };
+    match h.leaf_bounds(n) {
+        // One box per id, as the trait promises; anything else reads the
+        // primitives rather than drop one.
+        Some(kept) if kept.len() == here.len() => {
+            here.iter().zip(kept).for_each(|(&p, b)| visit(p, b))
+        }
+        _ => here
+            .iter()
+            .for_each(|&p| visit(p, &prims[p as usize].bounds())),
+    }
+    found
+}
+
 /// The single-tree queries, for every [`Hierarchy`] (the canonical [`Bvh`]
 /// and every [layout](crate::layout)). `Bvh` has the same methods inherently,
 /// so it needs no import.
@@ -135,12 +167,7 @@ pub trait Query: Hierarchy {
         while let Some(n) = stack.pop() {
             match self.content(n) {
                 Content::Leaf(here) => {
-                    for &p in here {
-                        if region.overlaps_aabb(&prims[p as usize].bounds()) {
-                            f(p);
-                            found += 1;
-                        }
-                    }
+                    found += leaf_overlapping(self, n, here, prims, region, &mut f) as usize;
                 }
                 Content::Inner(kids) => {
                     for &c in kids.as_slice().iter().rev() {
@@ -171,14 +198,9 @@ pub trait Query: Hierarchy {
             return Ok(0);
         }
         let mut found = 0;
-        // Tests a leaf's primitives; returns how many were tested.
-        let mut visit_leaf = |here: &[u32]| {
-            for &p in here {
-                if region.overlaps_aabb(&prims[p as usize].bounds()) {
-                    f(p);
-                    found += 1;
-                }
-            }
+        // Tests leaf `n`'s primitives; returns how many were tested.
+        let mut visit_leaf = |n: u32, here: &[u32]| {
+            found += leaf_overlapping(self, n, here, prims, region, &mut f) as usize;
             here.len() as u32
         };
         match order {
@@ -190,7 +212,7 @@ pub trait Query: Hierarchy {
                         continue;
                     }
                     match self.content(n) {
-                        Content::Leaf(here) => tally.prim_tests(visit_leaf(here)),
+                        Content::Leaf(here) => tally.prim_tests(visit_leaf(n, here)),
                         Content::Inner(kids) => {
                             for &c in kids.as_slice().iter().rev() {
                                 stack.push(c)?;
@@ -205,14 +227,14 @@ pub trait Query: Hierarchy {
                     n: u32,
                     region: &R,
                     tally: &mut impl Tally,
-                    leaf: &mut impl FnMut(&[u32]) -> u32,
+                    leaf: &mut impl FnMut(u32, &[u32]) -> u32,
                 ) {
                     tally.bv_tests(1);
                     if !region.may_overlap(&h.bv(n)) {
                         return;
                     }
                     match h.content(n) {
-                        Content::Leaf(here) => tally.prim_tests(leaf(here)),
+                        Content::Leaf(here) => tally.prim_tests(leaf(n, here)),
                         Content::Inner(kids) => {
                             for &c in kids.as_slice() {
                                 walk(h, c, region, tally, leaf);
@@ -237,7 +259,7 @@ pub trait Query: Hierarchy {
                     }
                     match self.content(n) {
                         Content::Leaf(here) => {
-                            tally.prim_tests(visit_leaf(here));
+                            tally.prim_tests(visit_leaf(n, here));
                             None
                         }
                         Content::Inner(kids) => Some(kids),
