@@ -21,6 +21,7 @@ fn bench(c: &mut Criterion) {
     let leaf4 = OwnedBvh::<Aabb>::build(&TopDown::sah(), &a).unwrap();
     let leaf4_b = OwnedBvh::<Aabb>::build(&TopDown::sah(), &b).unwrap();
     let (t1a, t1b, t4a, t4b) = (leaf1.view(), leaf1_b.view(), leaf4.view(), leaf4_b.view());
+    let (p4a, p4b) = (leaf4.plain_view(), leaf4_b.plain_view());
 
     let ours = |ta, tb, rule| Pairs::new(ta, &a, tb, &b).descent(rule).count().unwrap();
     let want = ours(&t4a, &t4b, Descent::Larger);
@@ -33,6 +34,13 @@ fn bench(c: &mut Criterion) {
         for rule in [Descent::Larger, Descent::Simultaneous] {
             g.bench_function(format!("bvhkit-{name}-stack-{}", rule.name()), |bch| {
                 bch.iter(|| black_box(ours(ta, tb, rule)))
+            });
+        }
+        if name == "leaf4" {
+            // The default query on the same trees without their kept leaf
+            // bounds: what `with_leaf_bounds` buys.
+            g.bench_function("bvhkit-leaf4-stack-simultaneous-no-kept-bounds", |bch| {
+                bch.iter(|| black_box(ours(&p4a, &p4b, Descent::Simultaneous)))
             });
         }
         g.bench_function(format!("bvhkit-{name}-recursive-larger"), |bch| {
