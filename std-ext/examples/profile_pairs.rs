@@ -1,10 +1,12 @@
 //! The default pair query on a mesh against a moved copy, as the peer
 //! benchmark runs it, with and without the kept leaf bounds (medians; also a
 //! loop for profilers): `cargo run --release -p bvhkit-std --example
-//! profile_pairs -- [MESH] [RUNS]` (the mesh defaults to the armadillo that
-//! `scripts/fetch-meshes` gets).
-use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, Counts, Pairs, Primitive, TopDown};
+//! profile_pairs -- [MESH] [RUNS] [kept|plain|moved]` (the mesh defaults to
+//! the armadillo that `scripts/fetch-meshes` gets; the last argument times
+//! one only). `moved` is the same query with B as A's own tree moved by the
+//! same motion (`in_frame`, no rebuild).
+use bvhkit::glam::{Quat, Vec3};
+use bvhkit::{Aabb, Counts, Pairs, Primitive, Rigid, TopDown};
 use bvhkit_std::{median_time, scene, OwnedBvh};
 
 fn main() {
@@ -13,6 +15,7 @@ fn main() {
         .next()
         .unwrap_or_else(|| "data/meshes/armadillo.off".into());
     let runs: usize = args.next().and_then(|r| r.parse().ok()).unwrap_or(50);
+    let only = args.next();
     let a = bvhkit_std::mesh::load(std::path::Path::new(&path)).expect("mesh loads");
     let boxes_a: Vec<Aabb> = a.iter().map(|t| t.bounds()).collect();
     let bounds = boxes_a.iter().fold(Aabb::EMPTY, |u, b| u.union(b));
@@ -33,10 +36,18 @@ fn main() {
         counts.bv_tests,
         counts.prim_tests
     );
-    for (name, va, vb) in [
-        ("kept leaf bounds (default)", ta.view(), tb.view()),
-        ("without leaf bounds", ta.plain_view(), tb.plain_view()),
+    for (key, name, va, vb) in [
+        ("kept", "kept leaf bounds (default)", ta.view(), tb.view()),
+        (
+            "plain",
+            "without leaf bounds",
+            ta.plain_view(),
+            tb.plain_view(),
+        ),
     ] {
+        if only.as_deref().is_some_and(|o| o != key) {
+            continue;
+        }
         let (t, m) = median_time(runs, || {
             Pairs::new(&va, &boxes_a, &vb, &boxes_b)
                 .count()
@@ -45,6 +56,23 @@ fn main() {
         assert_eq!(m, n);
         println!(
             "{name:<28} {:.3} ms (median of {runs})",
+            t.as_secs_f64() * 1e3
+        );
+    }
+    if only.as_deref().is_none_or(|o| o == "moved") {
+        // The motion of `scene::transformed`: about y, then half about x.
+        let turn = Quat::from_rotation_y(0.02) * Quat::from_rotation_x(0.01);
+        let motion = Rigid::new(turn, shift).expect("motion");
+        let va = ta.view();
+        let (t, m) = median_time(runs, || {
+            Pairs::new(&va, &boxes_a, &va, &boxes_a)
+                .in_frame(motion)
+                .count()
+                .expect("query")
+        });
+        println!(
+            "{:<28} {:.3} ms (median of {runs}), {m} pairs",
+            "B moved (in_frame)",
             t.as_secs_f64() * 1e3
         );
     }

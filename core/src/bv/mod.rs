@@ -219,6 +219,7 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     /// default boxes the moved enclosing box, which is valid for every volume
     /// but loose for rotated OBBs and k-DOPs; types override it when they can
     /// do better.
+    #[inline]
     fn transformed(&self, t: &crate::Rigid) -> Self {
         Self::from_aabb(&t.apply_aabb(&self.aabb()))
     }
@@ -229,6 +230,7 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     /// this: a moved sphere contains a moved triangle, but not that
     /// triangle's new bounding box. Volumes whose `transformed` goes through
     /// a box (the default) already satisfy it.
+    #[inline]
     fn transformed_with_boxes(&self, t: &crate::Rigid) -> Self {
         self.transformed(t)
     }
