@@ -89,7 +89,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             (t.node_count(), t.depth())
         };
         nodes.truncate(used);
-        Ok(OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth))
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth)
     }
 
     /// Builds by insertion (dynamic-tree storage allocated here and dropped).
@@ -108,27 +108,25 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             (t.node_count(), t.depth())
         };
         nodes.truncate(used);
-        Ok(OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth))
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth)
     }
 
-    /// Keeps a built tree with its primitives' bounds in leaf order.
+    /// Keeps a built tree with its primitives' bounds in leaf order, as
+    /// the core writes them ([`Bvh::with_leaf_bounds`]).
     fn with_leaf_bounds<P: Primitive>(
         nodes: Vec<Node<B>>,
         indices: Vec<u32>,
         prims: &[P],
         depth: usize,
-    ) -> Self {
-        // Every index names a primitive (the builder just wrote them).
-        let leaf_bounds = indices
-            .iter()
-            .map(|&i| prims.get(i as usize).map_or(Aabb::EMPTY, Primitive::bounds))
-            .collect();
-        OwnedBvh {
+    ) -> Result<Self, Error> {
+        let mut leaf_bounds = vec![Aabb::EMPTY; indices.len()];
+        Bvh::from_raw_parts(&nodes, &indices, depth).with_leaf_bounds(prims, &mut leaf_bounds)?;
+        Ok(OwnedBvh {
             nodes,
             indices,
             leaf_bounds,
             depth,
-        }
+        })
     }
 
     /// The tree without its kept leaf bounds: what a layout converted for

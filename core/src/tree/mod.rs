@@ -183,6 +183,30 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     /// them (kept elsewhere, for instance in a `Vec` by the std side). Their
     /// values are trusted like the rest of the raw parts; only their length is
     /// checked (one per index entry, or none).
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Bvh, Node, TopDown, Triangle};
+    /// use glam::Vec3;
+    /// let tris: Vec<Triangle> = (0..8).map(|i| {
+    ///     let o = Vec3::new(i as f32, 0.0, 0.0);
+    ///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+    /// }).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
+    /// let mut idx = vec![0; 8];
+    /// let mut kept = vec![Aabb::EMPTY; 8];
+    /// let (used, depth) = {
+    ///     let t = TopDown::default().build(&tris, &mut nodes, &mut idx)?;
+    ///     t.with_leaf_bounds(&tris, &mut kept)?;
+    ///     (t.node_count(), t.depth())
+    /// };
+    /// nodes.truncate(used);
+    /// // Later, from storage kept elsewhere:
+    /// let tree = Bvh::from_raw_parts_with_bounds(&nodes, &idx, &kept, depth)?;
+    /// assert_eq!(tree.leaf_bounds().map(|b| b.len()), Some(8));
+    /// // A bounds slice of the wrong length is refused.
+    /// assert!(Bvh::from_raw_parts_with_bounds(&nodes, &idx, &kept[..3], depth).is_err());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn from_raw_parts_with_bounds(
         nodes: &'a [Node<B>],
         indices: &'a [u32],
