@@ -62,7 +62,7 @@ mod stats;
 pub mod transform;
 pub mod tree;
 
-pub use builders::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, TopDown};
+pub use builders::{AxisChoice, BuildReport, OnFailure, Partition, SplitPoint, Stop, TopDown};
 #[cfg(feature = "obb")]
 pub use bv::Obb;
 #[cfg(feature = "sphere")]

@@ -18,7 +18,7 @@ pub mod scene;
 pub mod stats;
 pub mod tour;
 
-use bvhkit::{Aabb, BoundingVolume, Bvh, Error, Node, Primitive, TopDown};
+use bvhkit::{Aabb, BoundingVolume, BuildReport, Bvh, Error, Node, Primitive, TopDown};
 use std::time::{Duration, Instant};
 
 /// A tree with its storage in `Vec`s, sized exactly for the input, and the
@@ -40,6 +40,8 @@ pub struct OwnedBvh<B> {
     /// `leaf_bounds[k]` bounds primitive `indices[k]`.
     leaf_bounds: Vec<Aabb>,
     depth: usize,
+    /// What the builder did besides following its configuration.
+    report: BuildReport,
 }
 
 impl<B: BoundingVolume> OwnedBvh<B> {
@@ -49,9 +51,9 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; builder.index_capacity(prims.len())];
         let mut cache = vec![bvhkit::builders::PrimitiveRef::EMPTY; prims.len()];
-        let (used, depth) = {
+        let (used, depth, report) = {
             let t = builder.build_cached(prims, &mut nodes, &mut indices, &mut cache)?;
-            (t.node_count(), t.depth())
+            (t.node_count(), t.depth(), t.build_report())
         };
         nodes.truncate(used);
         nodes.shrink_to_fit();
@@ -65,6 +67,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             indices,
             leaf_bounds,
             depth,
+            report,
         })
     }
 
@@ -84,12 +87,12 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         };
         let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
-        let (used, depth) = {
+        let (used, depth, report) = {
             let t = builder.build(prims, &mut nodes, &mut indices, &mut scratch)?;
-            (t.node_count(), t.depth())
+            (t.node_count(), t.depth(), t.build_report())
         };
         nodes.truncate(used);
-        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth)
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth, report)
     }
 
     /// Builds by insertion (dynamic-tree storage allocated here and dropped).
@@ -103,12 +106,12 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         let mut order = vec![0u32; n];
         let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut indices = vec![0u32; n];
-        let (used, depth) = {
+        let (used, depth, report) = {
             let t = builder.build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?;
-            (t.node_count(), t.depth())
+            (t.node_count(), t.depth(), t.build_report())
         };
         nodes.truncate(used);
-        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth)
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth, report)
     }
 
     /// Keeps a built tree with its primitives' bounds in leaf order, as
@@ -118,6 +121,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         indices: Vec<u32>,
         prims: &[P],
         depth: usize,
+        report: BuildReport,
     ) -> Result<Self, Error> {
         let mut leaf_bounds = vec![Aabb::EMPTY; indices.len()];
         Bvh::from_raw_parts(&nodes, &indices, depth).with_leaf_bounds(prims, &mut leaf_bounds)?;
@@ -126,6 +130,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             indices,
             leaf_bounds,
             depth,
+            report,
         })
     }
 
@@ -133,13 +138,14 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     /// compactness (for example [`QuantizedWide`](bvhkit::layout::QuantizedWide))
     /// shares, at 24 bytes per primitive less and slower pair queries.
     pub fn plain_view(&self) -> Bvh<'_, B> {
-        Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth)
+        Bvh::from_raw_parts(&self.nodes, &self.indices, self.depth).with_build_report(self.report)
     }
 
     /// The tree as the core's borrowed view, leaf bounds attached.
     pub fn view(&self) -> Bvh<'_, B> {
         // One bound per index entry, as built: the fallback never runs.
         Bvh::from_raw_parts_with_bounds(&self.nodes, &self.indices, &self.leaf_bounds, self.depth)
+            .map(|t| t.with_build_report(self.report))
             .unwrap_or_else(|_| self.plain_view())
     }
 }

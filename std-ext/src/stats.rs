@@ -66,8 +66,23 @@ pub struct StatsReport {
     pub area_sum: f64,
     /// Sibling overlap (area of sibling box intersections over the root area).
     pub sibling_overlap: f64,
+    /// What the builder did besides following its configuration.
+    pub build: BuildLine,
     /// Bytes per representation.
     pub memory: Vec<MemoryLine>,
+}
+
+/// The builder's fallbacks and warnings ([`bvhkit::BuildReport`]).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct BuildLine {
+    /// Nodes split by a fallback instead of the configured strategy.
+    pub fallback_splits: u32,
+    /// Interventions of the depth limit.
+    pub depth_limited: u32,
+    /// Leaves over the configured maximum size (a warning).
+    pub oversized_leaves: u32,
+    /// The configured maximum leaf size.
+    pub max_leaf_size: u32,
 }
 
 /// Builds and measures a tree over `mesh`.
@@ -181,6 +196,15 @@ fn run_with<B: BoundingVolume>(
         volume_sum: s.volume_sum,
         area_sum,
         sibling_overlap: s.sibling_overlap,
+        build: {
+            let r = v.build_report();
+            BuildLine {
+                fallback_splits: r.fallback_splits,
+                depth_limited: r.depth_limited,
+                oversized_leaves: r.oversized_leaves,
+                max_leaf_size: r.max_leaf_size,
+            }
+        },
         memory,
     })
 }
@@ -205,8 +229,27 @@ pub fn render(r: &StatsReport) -> String {
         ("sum of volumes / root", format!("{:.2}", r.volume_sum)),
         ("sum of box areas / root", format!("{:.2}", r.area_sum)),
         ("sibling overlap", format!("{:.4}", r.sibling_overlap)),
+        (
+            "fallback splits (strategy failed)",
+            r.build.fallback_splits.to_string(),
+        ),
+        (
+            "depth-limited splits or rebuilds",
+            r.build.depth_limited.to_string(),
+        ),
+        (
+            "leaves over the maximum size",
+            r.build.oversized_leaves.to_string(),
+        ),
     ] {
         s += &format!("{k:<36} {v:>12}\n");
+    }
+    if r.build.oversized_leaves > 0 {
+        s += &format!(
+            "warning: {} leaves hold more triangles than the configured maximum ({}): \
+             queries stay exact but slower; raise max_depth or use OnFailure::ForceSplit\n",
+            r.build.oversized_leaves, r.build.max_leaf_size
+        );
     }
     s += "\nmemory (records + 4-byte index per triangle):\n";
     for m in &r.memory {
@@ -263,6 +306,45 @@ mod tests {
         assert_eq!(r.memory[0].bytes, Ok(r.nodes * 32 + 4 * mesh.len()));
         assert_eq!(r.memory[1].bytes, Ok(r.nodes * 32 + 28 * mesh.len()));
         assert!(render(&r).contains("quantized-4"));
+        // The build report: a median tree needs no fallback; a tree with a
+        // leaf over the stated size gets the warning line.
+        assert_eq!(
+            (
+                r.build.fallback_splits,
+                r.build.oversized_leaves,
+                r.build.max_leaf_size
+            ),
+            (0, 0, 1)
+        );
+        assert!(!render(&r).contains("warning"));
+        // Small triangles spaced ever wider: maximum separation peels them.
+        let row: Vec<Triangle> = (0..3000)
+            .map(|i| {
+                let o = bvhkit::glam::Vec3::new(1.01f32.powi(i), 0.0, 0.0);
+                Triangle::new(o, o + o * 1e-6, o + bvhkit::glam::Vec3::Y * 1e-3)
+            })
+            .collect();
+        let peeled = run(
+            "row",
+            &row,
+            &StatsOptions {
+                builder: "max-separation".into(),
+                leaf_size: None,
+                ..opts.clone()
+            },
+        )
+        .unwrap();
+        let b = peeled.build;
+        assert!(b.fallback_splits > 0 && b.depth_limited > 0, "{b:?}");
+        let line = format!(
+            "{:<36} {:>12}",
+            "fallback splits (strategy failed)", b.fallback_splits
+        );
+        assert!(render(&peeled).contains(&line), "{}", render(&peeled));
+        let mut over = r.clone();
+        over.build.oversized_leaves = 3;
+        assert!(render(&over)
+            .contains("warning: 3 leaves hold more triangles than the configured maximum (1)"));
         assert!(run(
             "rock",
             &mesh,

@@ -158,6 +158,17 @@ pub fn build<B: BoundingVolume, P: Primitive>(
     let mut idx = vec![0u32; cfg.index_capacity(prims.len())];
     let (used, depth) = {
         let bvh: Bvh<B> = cfg.build(prims, &mut nodes, &mut idx)?;
+        // Every build's report counts the leaves over the stated size.
+        let over = bvh
+            .nodes()
+            .iter()
+            .filter(|n| n.is_leaf() && n.count > cfg.stop.max_leaf_size)
+            .count();
+        assert_eq!(
+            bvh.build_report().oversized_leaves as usize,
+            over,
+            "{cfg:?}"
+        );
         (bvh.node_count(), bvh.depth())
     };
     nodes.truncate(used);

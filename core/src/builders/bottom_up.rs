@@ -15,6 +15,7 @@
 //!
 //! Both need caller scratch ([`BottomUp::scratch_len`]); nothing allocates.
 
+use super::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node};
@@ -209,6 +210,10 @@ impl BottomUp {
                 (cl.bv, kind)
             })
         };
+        let mut report = BuildReport {
+            max_leaf_size: 1,
+            ..BuildReport::default()
+        };
         let depth = match emit(clusters, nodes, indices) {
             Err(Error::StackOverflow { .. }) => {
                 // Merging the cheapest pairs can make a chain (primitives
@@ -216,12 +221,12 @@ impl BottomUp {
                 // at the small end). Depth is no reason to refuse: every
                 // subtree hanging below depth MAX_DEPTH / 2 is rebuilt
                 // balanced over its primitives, in their order along it.
-                bound_depth(clusters, root, n, scratch.work);
+                report.depth_limited = bound_depth(clusters, root, n, scratch.work);
                 emit(clusters, nodes, indices)?
             }
             other => other?,
         };
-        Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth))
+        Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth).with_build_report(report))
     }
 }
 
@@ -251,13 +256,13 @@ fn scene_scale<P: Primitive>(prims: &[P]) -> f32 {
 /// `MAX_DEPTH / 2 + log2(n)`. `work` (`2n` words) is scratch: the subtree's
 /// primitives in order at the front, the walk's stack at the back; the
 /// subtree's inner clusters are reused, chained through their `left` field
-/// while free.
+/// while free. Returns how many subtrees were rebuilt.
 fn bound_depth<B: BoundingVolume>(
     clusters: &mut [Cluster<B>],
     root: u32,
     n: usize,
     work: &mut [u32],
-) {
+) -> u32 {
     const CUT: usize = crate::MAX_DEPTH / 2;
     const NONE: u32 = u32::MAX;
     let is_leaf = |c: &Cluster<B>| c.left == c.right;
@@ -268,6 +273,7 @@ fn bound_depth<B: BoundingVolume>(
     let mut stack = [(0u32, 0usize, false); 2 * CUT + 4];
     stack[0] = (root, 0, false);
     let mut top = 1;
+    let mut rebuilt = 0;
     while top > 0 {
         top -= 1;
         let (c, d, children_done) = stack[top];
@@ -290,6 +296,7 @@ fn bound_depth<B: BoundingVolume>(
             continue;
         }
         // Collect the leaves below `c` in order; free its inner clusters.
+        rebuilt += 1;
         let (leaves, walk) = work.split_at_mut(n);
         let (mut m, mut sp, mut free) = (0usize, 1usize, NONE);
         walk[0] = c;
@@ -340,6 +347,7 @@ fn bound_depth<B: BoundingVolume>(
             len = w;
         }
     }
+    rebuilt
 }
 
 /// Merges the best pair of all active clusters until one is left; returns the root.

@@ -21,6 +21,7 @@
 //! of this crate runs on.
 
 use super::enclose;
+use super::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node, MAX_DEPTH};
@@ -82,7 +83,9 @@ pub enum SiblingSearch {
 /// for adversarial (sorted) input and leaves ordinary trees alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rotations {
-    /// Never rotate (sorted input can then exceed [`MAX_DEPTH`]: an error).
+    /// Never rotate, except where an insertion would otherwise make the tree
+    /// deeper than [`MAX_DEPTH`] (sorted input gets there): the tree is then
+    /// rebalanced by rotations so every query can still walk it.
     Off,
     /// Rebalance every node whose children's heights differ by more than one.
     Always,
@@ -145,6 +148,9 @@ pub struct DynamicTree<'s, B> {
     free: u32,
     leaves: u32,
     config: DynamicConfig,
+    /// Insertions that had to rotate against the configuration (the
+    /// depth limit), reported by [`to_bvh`](Self::to_bvh).
+    forced_rebalances: u32,
 }
 
 fn area<B: BoundingVolume>(b: &B) -> f64 {
@@ -186,6 +192,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             free: if n > 0 { 0 } else { NULL },
             leaves: 0,
             config,
+            forced_rebalances: 0,
         })
     }
 
@@ -275,9 +282,9 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     }
 
     /// Inserts object `item` with bounds `bounds`; returns its leaf handle.
-    /// Errors: non-finite bounds, storage full, or (with [`Rotations::Off`]) a
-    /// tree that would get deeper than [`MAX_DEPTH`]; the object is not
-    /// inserted then.
+    /// Errors: non-finite bounds or storage full; the object is not inserted
+    /// then. Depth is not an error: a tree that would get deeper than
+    /// [`MAX_DEPTH`] is rebalanced by rotations whatever [`Rotations`] says.
     pub fn insert(&mut self, item: u32, bounds: &Aabb) -> Result<u32, Error> {
         let bv = self.fat(item, bounds)?;
         if self.free == NULL || (self.root != NULL && self.nodes[self.free as usize].parent == NULL)
@@ -311,8 +318,11 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// Tells the tree that the object of `leaf` now has `bounds`. Returns
     /// `false` when the bounds are still inside the leaf's fat volume (nothing
     /// changed), `true` when the leaf was reinserted with a new fat volume.
-    /// An error other than bad bounds (only possible without rotations, for a
-    /// tree at [`MAX_DEPTH`]) removes the object; the error says why.
+    /// Bad bounds are an error that leaves the object where it was. (The
+    /// reinsertion itself cannot fail: the detach freed the node it needs,
+    /// and a tree that would get too deep is rebalanced as in
+    /// [`insert`](Self::insert). Should even that fail, the object is
+    /// removed and the error says so.)
     pub fn update(&mut self, leaf: u32, bounds: &Aabb) -> Result<bool, Error> {
         self.check_leaf(leaf)?;
         let item = self.nodes[leaf as usize].item;
@@ -323,17 +333,9 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         self.detach(leaf);
         self.nodes[leaf as usize].bv = bv;
         if let Err(e) = self.attach(leaf) {
-            // Only possible without rotations: retry once with them, which
-            // shortens the path the leaf went down.
-            let rotations = self.config.rotations;
-            self.config.rotations = Rotations::Always;
-            let retry = self.attach(leaf);
-            self.config.rotations = rotations;
-            if retry.is_err() {
-                self.release(leaf);
-                self.leaves -= 1;
-                return Err(e); // the object is no longer in the tree
-            }
+            self.release(leaf);
+            self.leaves -= 1;
+            return Err(e); // the object is no longer in the tree
         }
         Ok(true)
     }
@@ -447,6 +449,18 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         }
         self.fix_upwards(parent);
         if self.height() > MAX_DEPTH {
+            // Too deep for the traversals' fixed stacks (only possible when
+            // rotations are off or start high): rotate whatever the
+            // configuration says, first along the new leaf's path, then,
+            // if that was not enough, along every leaf's path. Depth is
+            // never a reason to refuse an object.
+            self.forced_rebalances = self.forced_rebalances.saturating_add(1);
+            self.with_rotations(|t| t.fix_upwards(parent));
+            if self.height() > MAX_DEPTH {
+                self.with_rotations(Self::rebalance_every_path);
+            }
+        }
+        if self.height() > MAX_DEPTH {
             let h = self.height();
             self.detach(leaf);
             return Err(Error::StackOverflow {
@@ -455,6 +469,26 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             });
         }
         Ok(())
+    }
+
+    /// Runs `f` with rotations at every node, then restores the configuration.
+    fn with_rotations(&mut self, f: impl FnOnce(&mut Self)) {
+        let rotations = self.config.rotations;
+        self.config.rotations = Rotations::Always;
+        f(self);
+        self.config.rotations = rotations;
+    }
+
+    /// Balances the path from every leaf to the root (O(n * height); only
+    /// run when one path's rotations did not bring the tree under
+    /// [`MAX_DEPTH`]).
+    fn rebalance_every_path(&mut self) {
+        for i in 0..self.nodes.len() {
+            let node = self.nodes[i];
+            if node.height == 0 && node.is_leaf() && node.parent != NULL {
+                self.fix_upwards(node.parent);
+            }
+        }
     }
 
     /// Unlinks a leaf (not freed); its sibling takes the parent's place.
@@ -630,7 +664,10 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
 
     /// Writes the tree in the query layout (children adjacent, one object per
     /// leaf): `nodes` needs `2 * len() - 1` entries, `indices` `len()`. An
-    /// empty tree gives the empty `Bvh` (no nodes).
+    /// empty tree gives the empty `Bvh` (no nodes). Its
+    /// [`build_report`](Bvh::build_report) counts, as `depth_limited`, the
+    /// insertions since [`new`](Self::new) that rebalanced the tree against
+    /// its [`Rotations`] to stay within [`MAX_DEPTH`].
     pub fn to_bvh<'a>(
         &self,
         nodes: &'a mut [Node<B>],
@@ -663,12 +700,15 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             (node.bv, kind)
         })?;
         let bound = crate::tree::index_bound_of(&indices[..n]);
-        Ok(Bvh::from_built_ids(
-            &nodes[..needed],
-            &indices[..n],
-            depth,
-            bound,
-        ))
+        let report = BuildReport {
+            depth_limited: self.forced_rebalances,
+            max_leaf_size: 1,
+            ..BuildReport::default()
+        };
+        Ok(
+            Bvh::from_built_ids(&nodes[..needed], &indices[..n], depth, bound)
+                .with_build_report(report),
+        )
     }
 }
 

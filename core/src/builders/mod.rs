@@ -12,6 +12,7 @@ mod bottom_up;
 mod dynamic;
 mod presets;
 mod refit;
+mod report;
 mod strategy;
 mod top_down;
 
@@ -23,6 +24,7 @@ pub use dynamic::{
 };
 pub use presets::{Preset, PRESETS};
 pub use refit::{refit_all, Refit};
+pub use report::BuildReport;
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
 pub use top_down::{PrimitiveRef, TopDown};

@@ -38,6 +38,27 @@ pub enum Partition {
     },
 }
 
+impl Partition {
+    /// Whether the cost weighs how many primitives each side gets (balance,
+    /// the SAH, a weighted sum with either): criteria that do not can be
+    /// satisfied by cutting off a sliver, which the builder treats as a
+    /// failed split ([`BuildReport::fallback_splits`](super::BuildReport)).
+    pub const fn weighs_counts(&self) -> bool {
+        match *self {
+            Partition::Balance | Partition::SurfaceArea => true,
+            Partition::Weighted {
+                surface_area,
+                balance,
+                ..
+            } => surface_area > 0.0 || balance > 0.0,
+            Partition::Volume
+            | Partition::LargerChild
+            | Partition::Overlap
+            | Partition::Separation => false,
+        }
+    }
+}
+
 /// Which axis (or axes) candidate splits are placed along.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AxisChoice {

@@ -14,6 +14,7 @@ mod validate;
 
 pub use hierarchy::{Boxes4, Content, Hierarchy, Kids, MAX_CHILDREN};
 
+use crate::builders::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::Primitive;
 use crate::Error;
@@ -133,6 +134,8 @@ pub struct Bvh<'a, B> {
     /// (so it is `n`); a [`DynamicTree`](crate::builders::DynamicTree) after
     /// removals names the caller's ids, which can leave gaps.
     bound: u32,
+    /// What the builder reported (all zero for storage opened otherwise).
+    report: BuildReport,
 }
 
 impl<'a, B: BoundingVolume> Bvh<'a, B> {
@@ -144,6 +147,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             leaf_bounds: &[],
             depth,
             bound: indices.len() as u32,
+            report: BuildReport::default(),
         }
     }
 
@@ -175,6 +179,7 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             leaf_bounds: &[],
             depth: depth.min(u32::MAX as usize) as u32,
             bound: index_bound_of(indices),
+            report: BuildReport::default(),
         }
     }
 
@@ -241,9 +246,25 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
             leaf_bounds: &[],
             depth,
             bound: index_bound_of(indices),
+            report: BuildReport::default(),
         };
         bvh.validate(prims, seen)?;
         Ok(bvh)
+    }
+
+    /// What the builder did besides following its configuration: its
+    /// fallbacks, the depth limit's interventions and any leaf over the
+    /// stated size (see [`BuildReport`]). All zero for a tree opened from
+    /// storage, unless [`with_build_report`](Self::with_build_report) put
+    /// the builder's report back.
+    pub fn build_report(&self) -> BuildReport {
+        self.report
+    }
+
+    /// The same tree carrying `report`: for storage kept elsewhere (as
+    /// `bvhkit-std`'s owned tree does) to keep what its builder reported.
+    pub fn with_build_report(self, report: BuildReport) -> Self {
+        Bvh { report, ..self }
     }
 
     /// The nodes; the root is `nodes()[0]`.

@@ -481,3 +481,121 @@ fn every_query_refuses_a_tree_deeper_than_its_stack() {
     assert!(is_overflow(deep.ray_hits_any(&a, &ray, ()).unwrap_err()));
     assert!(is_overflow(deep.nearest(&a, Vec3::ZERO, ()).unwrap_err()));
 }
+
+/// The builders say what they did besides following their configuration
+/// (#19): splits where the criterion failed and a fallback took over, the
+/// depth limit's halvings and rebuilds, and leaves over the stated size
+/// (the one warning). The owned tree keeps the report.
+#[test]
+fn build_reports_count_fallbacks_depth_limits_and_oversized_leaves() {
+    use bvhkit::builders::{
+        BottomUp, BuildReport, DynamicConfig, InsertOrder, Insertion, Rotations,
+    };
+    use bvhkit_std::OwnedBvh;
+    let row: Vec<Triangle> = (0..5000)
+        .map(|i| tri_at(Vec3::new(1.01f32.powi(i), 0.0, 0.0), 1e-3))
+        .collect();
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(row.len())];
+    let mut idx = vec![0u32; row.len()];
+    let mut report = |cfg: TopDown, prims: &[Triangle]| {
+        let t = cfg.build(prims, &mut nodes, &mut idx).unwrap();
+        let r = t.build_report();
+        // The oversized count is the tree's own: leaves over the size.
+        let over = t
+            .nodes()
+            .iter()
+            .filter(|n| n.is_leaf() && n.count > cfg.stop.max_leaf_size)
+            .count();
+        assert_eq!(r.oversized_leaves as usize, over, "{cfg:?}");
+        assert_eq!(r.max_leaf_size, cfg.stop.max_leaf_size);
+        r
+    };
+
+    // The default on an ordinary mesh: nothing to report.
+    let rock = bvhkit_std::scene::rock(3, 1);
+    let quiet = BuildReport {
+        max_leaf_size: 4,
+        ..BuildReport::default()
+    };
+    assert_eq!(report(TopDown::sah(), &rock), quiet);
+    assert_eq!(report(TopDown::sah(), &row), quiet);
+
+    // Maximum separation peels the row: slivers under 1% are failed splits
+    // (the SAH takes over), the rest spends the depth until the budget
+    // halves nodes, and leaves keep to their size.
+    let separation = TopDown {
+        partition: Partition::Separation,
+        ..TopDown::sah()
+    };
+    let r = report(separation, &row);
+    assert!(r.fallback_splits > 0 && r.depth_limited > 0, "{r:?}");
+    assert!(!r.has_warnings(), "{r:?}");
+
+    // Nothing separates identical triangles: every split is a fallback;
+    // made leaves instead, one leaf of 300 with a warning.
+    let same = vec![tri_at(Vec3::ONE, 1.0); 300];
+    let r = report(TopDown::sah(), &same);
+    assert!(r.fallback_splits >= 60 && r.oversized_leaves == 0, "{r:?}");
+    let as_leaf = TopDown {
+        on_failure: OnFailure::Leaf,
+        ..TopDown::sah()
+    };
+    let r = report(as_leaf, &same);
+    assert_eq!((r.fallback_splits, r.oversized_leaves), (1, 1), "{r:?}");
+    assert!(r.has_warnings());
+
+    // A depth cap of 3 over 5,000 triangles: the 7 inner nodes are halved
+    // by the depth budget, and the 8 leaves of 625 are each over the size.
+    let capped = TopDown {
+        stop: Stop {
+            max_depth: 3,
+            ..Stop::default()
+        },
+        ..TopDown::sah()
+    };
+    let r = report(capped, &row);
+    assert_eq!((r.depth_limited, r.oversized_leaves), (7, 8), "{r:?}");
+
+    // Bottom-up: a chain too deep for the traversals is rebuilt balanced.
+    let points: Vec<Vec3> = (0..90)
+        .map(|i| Vec3::new(1.3f32.powi(i), 0.0, 0.0))
+        .collect();
+    let mut limited = 0;
+    for cfg in [
+        BottomUp::default(),
+        BottomUp::exhaustive(Default::default()),
+    ] {
+        let tree = OwnedBvh::<Aabb>::build_bottom_up(&cfg, &points).unwrap();
+        let r = tree.view().build_report();
+        assert_eq!(
+            (r.fallback_splits, r.oversized_leaves, r.max_leaf_size),
+            (0, 0, 1)
+        );
+        assert_eq!(tree.plain_view().build_report(), r);
+        limited += r.depth_limited;
+    }
+    assert!(limited > 0);
+    let r = OwnedBvh::<Aabb>::build_bottom_up(&BottomUp::default(), &rock)
+        .unwrap()
+        .view()
+        .build_report();
+    assert_eq!(r.depth_limited, 0);
+
+    // Insertion without rotations: sorted input reaches the depth limit,
+    // and the tree is rebalanced instead of refusing the object.
+    let off = Insertion {
+        config: DynamicConfig {
+            rotations: Rotations::Off,
+            ..DynamicConfig::default()
+        },
+        order: InsertOrder::Sorted,
+    };
+    let tree = OwnedBvh::<Aabb>::build_by_insertion(&off, &row).unwrap();
+    let r = tree.view().build_report();
+    assert!(
+        r.depth_limited > 0 && tree.view().depth() <= bvhkit::MAX_DEPTH,
+        "{r:?}"
+    );
+    let tree = OwnedBvh::<Aabb>::build_by_insertion(&Insertion::default(), &rock).unwrap();
+    assert_eq!(tree.view().build_report().depth_limited, 0);
+}

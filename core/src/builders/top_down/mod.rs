@@ -30,6 +30,7 @@ mod stop;
 pub use source::PrimitiveRef;
 
 use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
+use super::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{max_nodes, Bvh, Node, MAX_DEPTH};
@@ -251,11 +252,11 @@ impl TopDown {
             *slot = i as u32;
         }
         let src = Indexed(prims);
-        let (used, depth) = self.run(&src, nodes, idx, scratch)?;
+        let (used, depth, report) = self.run(&src, nodes, idx, scratch)?;
         refit_to_contain_children(&mut nodes[..used]);
         let nodes: &'a [Node<B>] = nodes;
         let idx: &'a [u32] = idx;
-        Ok(Bvh::from_built(&nodes[..used], idx, depth))
+        Ok(Bvh::from_built(&nodes[..used], idx, depth).with_build_report(report))
     }
 
     /// Builds like [`build`](Self::build), but first copies every primitive's
@@ -298,7 +299,7 @@ impl TopDown {
             *slot = PrimitiveRef::new(&p.bounds(), i as u32);
         }
         // The index array is free until the end: it serves as sweep scratch.
-        let (used, depth) = self.run(&Cached, nodes, items, indices)?;
+        let (used, depth, report) = self.run(&Cached, nodes, items, indices)?;
         for (slot, item) in indices.iter_mut().zip(items.iter()) {
             *slot = item.index();
         }
@@ -306,7 +307,7 @@ impl TopDown {
         refit_to_contain_children(&mut nodes[..used]);
         let nodes: &'a [Node<B>] = nodes;
         let idx: &'a [u32] = indices;
-        Ok(Bvh::from_built(&nodes[..used], &idx[..n], depth))
+        Ok(Bvh::from_built(&nodes[..used], &idx[..n], depth).with_build_report(report))
     }
 
     /// Shared input checks; returns n.
@@ -335,16 +336,20 @@ impl TopDown {
         Ok(n)
     }
 
-    /// The skeleton: returns (nodes used, depth).
+    /// The skeleton: returns (nodes used, depth, what it did).
     fn run<S: Source, B: BoundingVolume>(
         &self,
         src: &S,
         nodes: &mut [Node<B>],
         idx: &mut [S::Item],
         scratch: &mut [u32],
-    ) -> Result<(usize, u32), Error> {
+    ) -> Result<(usize, u32, BuildReport), Error> {
+        let mut report = BuildReport {
+            max_leaf_size: self.stop.max_leaf_size,
+            ..BuildReport::default()
+        };
         if idx.is_empty() {
-            return Ok((0, 0)); // the empty tree: no nodes at all
+            return Ok((0, 0, report)); // the empty tree: no nodes at all
         }
         let (bounds, centroids) = bounds_of(src, idx);
         const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
@@ -379,10 +384,11 @@ impl TopDown {
                 None
             } else {
                 let m = range.len().min(scratch.len());
-                self.split(src, range, &mut scratch[..m], &task, &bv)
+                self.split(src, range, &mut scratch[..m], &task, &bv, &mut report)
             };
             match halves {
                 None => {
+                    report.oversized_leaves += u32::from(count > self.stop.max_leaf_size);
                     nodes[task.node as usize] = Node {
                         bv,
                         first: task.start,
@@ -441,7 +447,7 @@ impl TopDown {
                 }
             }
         }
-        Ok((used, max_depth))
+        Ok((used, max_depth, report))
     }
 }
 

@@ -1,7 +1,8 @@
 //! Stopping and falling back: the depth budget that halves a node when the
 //! levels left are only just enough, and the fallbacks of the lectures when
-//! a strategy does not separate a node (another axis choice, then the object
-//! median, which always separates by count).
+//! a strategy does not separate a node (another axis choice, then the SAH,
+//! then the object median, which always separates by count). Each fallback
+//! is counted in the tree's [`BuildReport`].
 
 use super::axes::longest_direction;
 use super::criteria::Norm;
@@ -10,6 +11,7 @@ use super::source::Source;
 use super::split_points::{plan, Plan};
 use super::{Halves, Task, TopDown};
 use crate::builders::strategy::{AxisChoice, OnFailure, Partition, SplitPoint};
+use crate::builders::BuildReport;
 use crate::bv::BoundingVolume;
 
 impl TopDown {
@@ -21,6 +23,7 @@ impl TopDown {
         scratch: &mut [u32],
         task: &Task,
         bv: &B,
+        report: &mut BuildReport,
     ) -> Option<Halves> {
         let norm = Norm::new(&task.bounds);
         // Depth budget: a node of n primitives needs log2(n / max leaf)
@@ -35,10 +38,12 @@ impl TopDown {
         let needed = usize::BITS - (leaves.max(1) - 1).leading_zeros(); // ceil(log2)
         let left = self.stop.max_depth.saturating_sub(task.depth);
         if needed >= left && leaves > 1 {
+            report.depth_limited += 1;
             let dir = longest_direction(task);
             let mid = range.len() / 2;
             return Some(apply(src, range, Plan::Order { dir, mid }));
         }
+        let n = range.len();
         let mut attempt = |axis: AxisChoice, split: SplitPoint, partition: Partition| {
             let plan = plan(src, range, scratch, task, bv, axis, split, partition, &norm)?;
             let h = apply(src, range, plan);
@@ -48,13 +53,30 @@ impl TopDown {
             !(norm.nearly_as_large(&h.bounds[0], &task.bounds)
                 && norm.nearly_as_large(&h.bounds[1], &task.bounds))
         };
+        // A criterion that ignores how many primitives each side holds can
+        // be satisfied by cutting off a sliver (one triangle at the edge of a
+        // curved mesh has no overlap with the rest): under 1% of a node of
+        // 100 or more on one side counts as a failure for those.
+        let lopsided = |h: &Halves, partition: Partition| {
+            n >= 100 && h.mid.min(n - h.mid) * 100 < n && !partition.weighs_counts()
+        };
         if let Some(h) = attempt(self.axis, self.split, self.partition) {
-            if acceptable(&h) {
+            if acceptable(&h) && !lopsided(&h, self.partition) {
                 return Some(h);
             }
         }
+        report.fallback_splits += 1;
         if self.axis != AxisChoice::BestOfXyz {
             if let Some(h) = attempt(AxisChoice::BestOfXyz, self.split, self.partition) {
+                if acceptable(&h) && !lopsided(&h, self.partition) {
+                    return Some(h);
+                }
+            }
+        }
+        if !self.partition.weighs_counts() {
+            // Another criterion: binned SAH, which prices each side's count.
+            let sah = (AxisChoice::BestOfXyz, SplitPoint::Bins(16));
+            if let Some(h) = attempt(sah.0, sah.1, Partition::SurfaceArea) {
                 if acceptable(&h) {
                     return Some(h);
                 }
@@ -74,5 +96,60 @@ impl TopDown {
             OnFailure::ForceSplit => Some(forced),
             OnFailure::Leaf => acceptable(&forced).then_some(forced),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::builders::BuildReport;
+    use crate::{Aabb, Node, Partition, TopDown, Triangle};
+    use glam::Vec3;
+
+    /// `cluster` triangles in a 10 x 10 x k block, plus one far away.
+    fn cluster_and_one_far(cluster: usize) -> [Triangle; 1000] {
+        core::array::from_fn(|i| {
+            let o = if i == cluster {
+                Vec3::splat(100.0)
+            } else {
+                let i = i as f32;
+                Vec3::new(i % 10.0, (i / 10.0).floor() % 10.0, (i / 100.0).floor()) * 0.1
+            };
+            Triangle::new(o, o + Vec3::X * 0.3, o + Vec3::Y * 0.3)
+        })
+    }
+
+    fn report(partition: Partition, prims: &[Triangle]) -> BuildReport {
+        let mut nodes = [Node::<Aabb>::ZERO; 2 * 1000 - 1];
+        let mut idx = [0u32; 1000];
+        let cfg = TopDown {
+            partition,
+            ..TopDown::sah()
+        };
+        cfg.build(prims, &mut nodes, &mut idx)
+            .unwrap()
+            .build_report()
+    }
+
+    /// The sliver rule: cutting 1 of 1,000 off is a failed split for a
+    /// count-blind criterion (the root's, here), not for the SAH; 1 of 100
+    /// is exactly 1%, not under it.
+    #[test]
+    fn a_cut_under_one_percent_is_a_failed_split_for_count_blind_criteria() {
+        let far = cluster_and_one_far(999);
+        assert_eq!(report(Partition::Overlap, &far).fallback_splits, 1);
+        assert_eq!(report(Partition::Volume, &far).fallback_splits, 1);
+        assert_eq!(report(Partition::SurfaceArea, &far).fallback_splits, 0);
+        let hundred = &cluster_and_one_far(99)[..100];
+        assert_eq!(report(Partition::Overlap, hundred).fallback_splits, 0);
+        assert!(!Partition::Separation.weighs_counts());
+        assert!(Partition::Balance.weighs_counts() && Partition::SurfaceArea.weighs_counts());
+        let weighted = |surface_area, balance| Partition::Weighted {
+            surface_area,
+            volume: 1.0,
+            overlap: 1.0,
+            balance,
+        };
+        assert!(!weighted(0.0, 0.0).weighs_counts());
+        assert!(weighted(0.5, 0.0).weighs_counts() && weighted(0.0, 0.5).weighs_counts());
     }
 }
