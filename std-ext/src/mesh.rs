@@ -3,12 +3,12 @@
 //! | format | how |
 //! |---|---|
 //! | Wavefront OBJ | the `tobj` crate, after a line-numbered check of every `v` and `f` line (faces of fewer than 3 vertices, bad or out-of-range indices, negative indices counted back) |
-//! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count |
-//! | PLY, ASCII and binary | the `ply-rs` crate; its errors are reduced to one line (the line, or the byte where binary data ends) |
+//! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count; a bad vertex is named by its line (ASCII) or the byte where it starts (binary) |
+//! | PLY, ASCII and binary | the `ply-rs` crate; its errors are reduced to one line (the line, or the byte where binary data ends); a bad vertex or face is named by its line (ASCII) or the byte where its record starts (binary, found from the header's types and the list lengths before it) |
 //! | OFF, with the `[ST][C][N]OFF` variants (colours, normals, texture coordinates; per-face colours) | by hand (a small text format no maintained crate reads) |
 //!
-//! Polygons are triangulated as fans. Every error names the file (and the
-//! line, where one is known); indices are checked against the vertex count,
+//! Polygons are triangulated as fans. Every error names the file and the
+//! line (text) or byte offset (binary data) where one is known; indices are checked against the vertex count,
 //! coordinates must be finite, and nothing is allocated from a count a header
 //! claims before the data behind it has been read, so a hostile file gives an
 //! error, not a panic or an out-of-memory abort.
@@ -132,18 +132,34 @@ impl Placement {
 }
 
 /// A vertex, checked to be finite and within the builders' range
-/// ([`bvhkit::MAX_COORDINATE`]), so that the error names the file.
-fn finite(v: Vec3, which: usize, fail: Fail<'_>) -> Result<Vec3, MeshError> {
+/// ([`bvhkit::MAX_COORDINATE`]), so that the error names the file and the
+/// place: `at()` says where ("line 4: vertex 1", "byte 96: vertex 0"),
+/// computed only for an error.
+fn finite(v: Vec3, at: impl Fn() -> String, fail: Fail<'_>) -> Result<Vec3, MeshError> {
     if !v.is_finite() {
-        Err(fail(format!("vertex {which} has a non-finite coordinate")))
+        Err(fail(format!("{} has a non-finite coordinate", at())))
     } else if v.abs().max_element() > bvhkit::MAX_COORDINATE {
         Err(fail(format!(
-            "vertex {which} has a coordinate beyond {:e}, the largest bvhkit accepts",
+            "{} has a coordinate beyond {:e}, the largest bvhkit accepts",
+            at(),
             bvhkit::MAX_COORDINATE
         )))
     } else {
         Ok(v)
     }
+}
+
+/// The 1-based line of the `nth` (0-based) line of `text` whose first word
+/// is `word` (an ASCII STL's `vertex` or `facet` lines).
+fn line_of_nth(text: &[u8], word: &[u8], nth: usize) -> Option<usize> {
+    text.split(|&b| b == b'\n')
+        .enumerate()
+        .filter(|(_, l)| {
+            let l = l.trim_ascii_start();
+            l.starts_with(word) && l.get(word.len()).is_none_or(|b| b.is_ascii_whitespace())
+        })
+        .nth(nth)
+        .map(|(n, _)| n + 1)
 }
 
 /// Fan-triangulates an indexed polygon, checking every index.
@@ -198,14 +214,35 @@ fn load_stl(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
             )));
         }
     }
-    let mut cursor = std::io::Cursor::new(bytes);
-    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| fail(e.to_string()))?;
+    // Where triangle k's vertex j is: the byte of a binary record (84-byte
+    // header, then per triangle a 12-byte normal and three 12-byte
+    // vertices), the line of an ASCII file's (3k + j)th `vertex`.
+    let at = |k: usize, j: usize| {
+        if ascii {
+            match line_of_nth(&bytes, b"vertex", 3 * k + j) {
+                Some(n) => format!("line {n}: triangle {k} vertex {j}"),
+                None => format!("triangle {k} vertex {j}"),
+            }
+        } else {
+            format!(
+                "byte {}: triangle {k} vertex {j}",
+                84 + 50 * k + 12 + 12 * j
+            )
+        }
+    };
+    let facet = |k: usize| match line_of_nth(&bytes, b"facet", k) {
+        Some(n) => format!("line {n}: triangle {k}"),
+        None => format!("triangle {k}"),
+    };
+    let mut cursor = std::io::Cursor::new(&bytes);
+    let reader = stl_io::create_stl_reader(&mut cursor)
+        .map_err(|e| fail(format!("not a readable STL file: {e}")))?;
     let mut out = Vec::new();
     for (k, t) in reader.enumerate() {
-        let t = t.map_err(|e| fail(format!("triangle {}: {e}", k + 1)))?;
+        let t = t.map_err(|e| fail(format!("{}: {e}", facet(k))))?;
         let mut v = [Vec3::ZERO; 3];
-        for (slot, p) in v.iter_mut().zip(t.vertices) {
-            *slot = finite(Vec3::from_array(p.into()), 3 * k + 1, fail)?;
+        for (j, (slot, p)) in v.iter_mut().zip(t.vertices).enumerate() {
+            *slot = finite(Vec3::from_array(p.into()), || at(k, j), fail)?;
         }
         out.push(Triangle::new(v[0], v[1], v[2]));
     }
@@ -289,6 +326,118 @@ fn check_ply_header(bytes: &[u8], fail: Fail<'_>) -> Result<(), MeshError> {
     Ok(())
 }
 
+/// Where a PLY record is, for an error: the line of an ASCII record (one
+/// per line after the header), the byte offset of a binary one, walked from
+/// the header's property types with each list's length read from the data.
+struct PlyPlaces<'a> {
+    bytes: &'a [u8],
+    header: &'a ply_rs::ply::Header,
+    /// Byte after the `end_header` line.
+    data_start: usize,
+    /// Lines up to and including `end_header`.
+    header_lines: usize,
+}
+
+impl<'a> PlyPlaces<'a> {
+    fn new(bytes: &'a [u8], header: &'a ply_rs::ply::Header) -> Self {
+        let (mut data_start, mut header_lines) = (0, 0);
+        for line in bytes.split(|&b| b == b'\n') {
+            data_start += line.len() + 1;
+            header_lines += 1;
+            if line.trim_ascii() == b"end_header" {
+                break;
+            }
+        }
+        PlyPlaces {
+            bytes,
+            header,
+            data_start,
+            header_lines,
+        }
+    }
+
+    /// "line N: vertex k" or "byte N: vertex k".
+    fn at(&self, element: &str, k: usize) -> String {
+        use ply_rs::ply::Encoding;
+        let place = match self.header.encoding {
+            Encoding::Ascii => {
+                let before: usize = self
+                    .header
+                    .elements
+                    .values()
+                    .take_while(|e| e.name != element)
+                    .map(|e| e.count)
+                    .sum();
+                Some(format!("line {}", self.header_lines + before + k + 1))
+            }
+            Encoding::BinaryBigEndian | Encoding::BinaryLittleEndian => {
+                self.record_offset(element, k).map(|b| format!("byte {b}"))
+            }
+        };
+        match place {
+            Some(p) => format!("{p}: {element} {k}"),
+            None => format!("{element} {k}"),
+        }
+    }
+
+    fn record_offset(&self, element: &str, k: usize) -> Option<usize> {
+        use ply_rs::ply::{Encoding, PropertyType, ScalarType};
+        let size = |t: &ScalarType| match t {
+            ScalarType::Char | ScalarType::UChar => 1,
+            ScalarType::Short | ScalarType::UShort => 2,
+            ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+            ScalarType::Double => 8,
+        };
+        let big = matches!(self.header.encoding, Encoding::BinaryBigEndian);
+        let length = |at: usize, t: &ScalarType| -> Option<usize> {
+            let b = self.bytes.get(at..at + size(t))?;
+            let word = |b: &[u8]| -> u32 {
+                let mut w = [0u8; 4];
+                let n = b.len();
+                if big {
+                    w[4 - n..].copy_from_slice(b);
+                    u32::from_be_bytes(w)
+                } else {
+                    w[..n].copy_from_slice(b);
+                    u32::from_le_bytes(w)
+                }
+            };
+            let v = word(b);
+            let negative = match t {
+                ScalarType::Char => v >= 0x80,
+                ScalarType::Short => v >= 0x8000,
+                ScalarType::Int => v >= 0x8000_0000,
+                ScalarType::Float | ScalarType::Double => return None,
+                _ => false,
+            };
+            (!negative).then_some(v as usize)
+        };
+        let mut at = self.data_start;
+        for e in self.header.elements.values() {
+            let last = e.name == element;
+            for _ in 0..if last { k } else { e.count } {
+                for p in e.properties.values() {
+                    at = match &p.data_type {
+                        PropertyType::Scalar(t) => at.checked_add(size(t))?,
+                        PropertyType::List(count, item) => {
+                            let n = length(at, count)?;
+                            at.checked_add(size(count))?
+                                .checked_add(n.checked_mul(size(item))?)?
+                        }
+                    };
+                }
+                if at > self.bytes.len() {
+                    return None;
+                }
+            }
+            if last {
+                return Some(at);
+            }
+        }
+        None
+    }
+}
+
 fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     use ply_rs::ply::Property;
     let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
@@ -299,6 +448,7 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     let ply = parser
         .read_ply(&mut reader)
         .map_err(|e| fail(ply_error(&e.to_string(), size)))?;
+    let places = PlyPlaces::new(&bytes, &ply.header);
     let scalar = |p: Option<&Property>| -> Option<f64> {
         Some(match *p? {
             Property::Float(x) => x as f64,
@@ -315,11 +465,13 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     let mut vertices = Vec::new();
     for (k, v) in ply.payload.get("vertex").into_iter().flatten().enumerate() {
         let c = |name: &str| {
-            scalar(v.get(name))
-                .ok_or_else(|| fail(format!("vertex {k}: no numeric '{name}' property")))
+            scalar(v.get(name)).ok_or_else(|| {
+                let at = places.at("vertex", k);
+                fail(format!("{at}: no numeric '{name}' property"))
+            })
         };
         let p = Vec3::new(c("x")? as f32, c("y")? as f32, c("z")? as f32);
-        vertices.push(finite(p, k, fail)?);
+        vertices.push(finite(p, || places.at("vertex", k), fail)?);
     }
     let mut out = Vec::new();
     for (k, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
@@ -331,16 +483,23 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
             Some(Property::ListUShort(l)) => l.iter().map(|&i| i as i64).collect(),
             Some(Property::ListChar(l)) => l.iter().map(|&i| i as i64).collect(),
             Some(Property::ListUChar(l)) => l.iter().map(|&i| i as i64).collect(),
-            _ => return Err(fail(format!("face {k}: no integer 'vertex_indices' list"))),
+            _ => {
+                let at = places.at("face", k);
+                return Err(fail(format!("{at}: no integer 'vertex_indices' list")));
+            }
         };
         let poly: Vec<usize> = poly
             .iter()
             .map(|&i| {
-                usize::try_from(i)
-                    .map_err(|_| fail(format!("face {k}: vertex index {i} is negative")))
+                usize::try_from(i).map_err(|_| {
+                    let at = places.at("face", k);
+                    fail(format!("{at}: vertex index {i} is negative"))
+                })
             })
             .collect::<Result<_, _>>()?;
-        fan(&poly, &vertices, &mut out, fail, &|| format!("face {k}: "))?;
+        fan(&poly, &vertices, &mut out, fail, &|| {
+            format!("{}: ", places.at("face", k))
+        })?;
     }
     Ok(out)
 }
@@ -405,7 +564,11 @@ fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
                 .parse()
                 .map_err(|_| fail(format!("line {n}: coordinate '{t}' is not a number")))?;
         }
-        vertices.push(finite(Vec3::from_array(c), k, fail)?);
+        vertices.push(finite(
+            Vec3::from_array(c),
+            || format!("line {n}: vertex {k}"),
+            fail,
+        )?);
     }
     let mut out = Vec::new();
     for k in 0..nf {
@@ -701,6 +864,75 @@ mod tests {
         }
     }
 
+    /// A binary PLY of three vertices (the second given, the others at 0
+    /// and (0, 1, 0)) and triangles, and the length of its header: vertex k
+    /// starts 12k bytes after it, face k 36 + 13k.
+    fn binary_ply(big_endian: bool, second: [f32; 3], faces: &[[i32; 3]]) -> (Vec<u8>, usize) {
+        let order = if big_endian { "big" } else { "little" };
+        let mut b = format!(
+            "ply\nformat binary_{order}_endian 1.0\nelement vertex 3\nproperty float x\n\
+             property float y\nproperty float z\nelement face {}\n\
+             property list uchar int vertex_indices\nend_header\n",
+            faces.len()
+        )
+        .into_bytes();
+        let header = b.len();
+        let put = |mut bytes: [u8; 4], b: &mut Vec<u8>| {
+            if big_endian {
+                bytes.reverse();
+            }
+            b.extend_from_slice(&bytes);
+        };
+        for v in [[0.0; 3], second, [0.0, 1.0, 0.0]] {
+            for x in v {
+                put(x.to_le_bytes(), &mut b);
+            }
+        }
+        for f in faces {
+            b.push(3);
+            for i in f {
+                put(i.to_le_bytes(), &mut b);
+            }
+        }
+        (b, header)
+    }
+
+    /// Binary PLY errors name the byte where the bad record starts; the
+    /// offset of a face after the first is found by reading the lengths of
+    /// the lists before it, in either byte order.
+    #[test]
+    fn binary_ply_errors_name_the_byte() {
+        for big in [false, true] {
+            let (bytes, h) = binary_ply(big, [f32::NAN, 0.0, 0.0], &[[0, 1, 2]]);
+            let e = load(&write_bytes("nan.ply", &bytes))
+                .unwrap_err()
+                .to_string();
+            let want = format!(
+                "nan.ply: byte {}: vertex 1 has a non-finite coordinate",
+                h + 12
+            );
+            assert!(e.ends_with(&want), "{e}");
+            let (bytes, h) = binary_ply(big, [1.0, 0.0, 0.0], &[[0, 1, 7]]);
+            let e = load(&write_bytes("far_index.ply", &bytes))
+                .unwrap_err()
+                .to_string();
+            let want = format!("byte {}: face 0: vertex index 7 out of range", h + 36);
+            assert!(e.contains(&want), "{e}");
+            let (bytes, h) = binary_ply(big, [1.0, 0.0, 0.0], &[[0, 1, 2], [2, 1, 0], [0, 1, -3]]);
+            let e = load(&write_bytes("negative.ply", &bytes))
+                .unwrap_err()
+                .to_string();
+            let want = format!(
+                "byte {}: face 2: vertex index -3 is negative",
+                h + 36 + 2 * 13
+            );
+            assert!(e.contains(&want), "{e}");
+            // The same file, well formed, loads.
+            let (bytes, _) = binary_ply(big, [1.0, 0.0, 0.0], &[[0, 1, 2], [2, 1, 0]]);
+            assert_eq!(load(&write_bytes("fine.ply", &bytes)).unwrap().len(), 2);
+        }
+    }
+
     #[test]
     fn hostile_files_are_errors_naming_the_file_and_line() {
         let one = [[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0f32]];
@@ -712,11 +944,29 @@ mod tests {
             ("lying_count.stl", binary_stl(&one, u32::MAX), "claims"),
             ("truncated.stl", truncated, "has 100 bytes"),
             ("short.stl", vec![1, 2, 3], "truncated"),
-            ("nan.stl", binary_stl(&nan, 1), "non-finite"),
+            // Binary formats name the byte where the bad record starts.
+            ("nan.stl", binary_stl(&nan, 1), "byte 108: triangle 0 vertex 1 has a non-finite"),
+            // ASCII STL: the STL crate refuses NaN itself (the facet's line);
+            // the range check names the vertex's line.
+            (
+                "nan_ascii.stl",
+                b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex nan 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n".to_vec(),
+                "line 2: triangle 0: expected finite",
+            ),
+            (
+                "far_ascii.stl",
+                b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e33 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n".to_vec(),
+                "line 5: triangle 0 vertex 1 has a coordinate beyond 1e32",
+            ),
+            (
+                "far_ascii.ply",
+                b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1e33 0 0\n0 1 0\n3 0 1 2\n".to_vec(),
+                "line 11: vertex 1 has a coordinate beyond 1e32",
+            ),
             ("huge_off.off", b"OFF\n1000000000000000 1 0\n0 0 0\n".to_vec(), "ends before"),
             ("bad_index.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n".to_vec(), "line 6"),
             ("bad_number.off", b"OFF\n3 1 0\n0 0 0\n1 x 0\n".to_vec(), "line 4"),
-            ("inf.off", b"OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "non-finite"),
+            ("inf.off", b"OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "line 4: vertex 1 has a non-finite"),
             ("no_header.off", b"3 1 0\n".to_vec(), "not an OFF file"),
             ("two_gon.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n".to_vec(), "2 vertices"),
             ("short_face.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n".to_vec(), "line 6: the face announces 3 vertices but lists 2"),
@@ -729,7 +979,7 @@ mod tests {
             (
                 "bad_ply_index.ply",
                 b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -5\n".to_vec(),
-                "face 0: vertex index -5 is negative",
+                "line 13: face 0: vertex index -5 is negative",
             ),
             ("garbage.ply", b"not a ply at all".to_vec(), "PLY"),
             (
@@ -755,7 +1005,7 @@ mod tests {
             ("word.obj", b"v 0 zero 0\n".to_vec(), "line 1: 'zero' is not a number"),
             ("short_v.obj", b"v 0 0\n".to_vec(), "line 1: a vertex needs x, y and z"),
             ("far.obj", b"v 0 0 0\nv 1e33 0 0\n".to_vec(), "line 2: coordinate 1e33 is beyond 1e32"),
-            ("far.off", b"OFF\n3 1 0\n0 0 0\n-2e32 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "vertex 1 has a coordinate beyond 1e32"),
+            ("far.off", b"OFF\n3 1 0\n0 0 0\n-2e32 0 0\n0 1 0\n3 0 1 2\n".to_vec(), "line 4: vertex 1 has a coordinate beyond 1e32"),
             ("inline_comment.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # tail\n".to_vec(), "line 4: '#' is not a vertex index"),
         ] {
             let p = write_bytes(name, &bytes);
