@@ -233,7 +233,7 @@ fn check_two<A: Hierarchy, H: Hierarchy<Bv = A::Bv>>(
     check_pairs(ta, a, tb, b, motion, Bounds, &name)
 }
 
-fn run_all<B: BoundingVolume>(
+pub(crate) fn run_all<B: BoundingVolume>(
     (na, ia): (&[Node<B>], &[u32]),
     (nb, ib): (&[Node<B>], &[u32]),
     a: &[Triangle],
@@ -270,7 +270,7 @@ fn run_all<B: BoundingVolume>(
     Ok(())
 }
 
-fn run_boxes(
+pub(crate) fn run_boxes(
     (na, ia): (&[Node<Aabb>], &[u32]),
     (nb, ib): (&[Node<Aabb>], &[u32]),
     a: &[Triangle],

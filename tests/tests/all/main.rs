@@ -21,4 +21,5 @@ mod quality;
 mod refit;
 mod single_queries;
 mod sizing;
+mod stress;
 mod system;
