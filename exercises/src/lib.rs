@@ -19,7 +19,7 @@ pub mod student;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
-    Triangle,
+    Stop, Triangle,
 };
 
 /// The exercises, one method each. Statements and hints are in the book
@@ -222,6 +222,43 @@ pub trait Exercises {
     /// every `(id of a, id of b)` whose boxes overlap (touching counts), A's
     /// ids in their order, for each of them B's ids in theirs.
     fn leaf_pair_candidates(&self, a: (&[u32], &[Aabb]), b: (&[u32], &[Aabb])) -> Vec<(u32, u32)>;
+
+    /// Exercise 24: what a top-down builder does with a node of `n`
+    /// primitives at `depth` (the root is at 0), given its stopping rules
+    /// `stop` (ignore `min_volume`) and the split its criterion proposes,
+    /// `left` primitives on one side. `weighs_counts` says whether the
+    /// criterion weighs how many primitives each side gets
+    /// (`Partition::weighs_counts`). In this order:
+    /// [`NodeStep::Leaf`] when `n <= stop.max_leaf_size` or
+    /// `depth >= stop.max_depth`; [`NodeStep::Halve`] when the levels left,
+    /// `stop.max_depth - depth`, are no more than the levels needed to halve
+    /// the node down to leaves, `ceil(log2(ceil(n / max_leaf_size)))`;
+    /// [`NodeStep::FallBack`] when the proposed split puts everything on one
+    /// side, or (only for a criterion that does not weigh counts) when
+    /// `n >= 100` and the smaller side holds under 1% of `n`;
+    /// [`NodeStep::Split`] otherwise.
+    fn node_step(
+        &self,
+        n: u32,
+        depth: u32,
+        stop: &Stop,
+        left: u32,
+        weighs_counts: bool,
+    ) -> NodeStep;
+}
+
+/// What a top-down builder does with one node (exercise 24).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeStep {
+    /// Stop: the node becomes a leaf.
+    Leaf,
+    /// The depth budget: halve the node at its object median.
+    Halve,
+    /// The proposed split failed: try another axis choice, the SAH, then the
+    /// object median (and count it in the tree's `BuildReport`).
+    FallBack,
+    /// Take the proposed split.
+    Split,
 }
 
 /// The decoder of exercise 13: grid line `q` of axis `k` of `parent`. Line 0 is

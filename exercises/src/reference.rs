@@ -1,10 +1,10 @@
 //! Reference answers, written with the library.
 
-use crate::Exercises;
+use crate::{Exercises, NodeStep};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
-    PairTraversal, Pairs, Partition, Primitive, Sphere, Triangle,
+    PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
 };
 
 /// The reference implementation: scores 100%.
@@ -401,5 +401,28 @@ impl Exercises for Reference {
             }
         }
         out
+    }
+
+    fn node_step(
+        &self,
+        n: u32,
+        depth: u32,
+        stop: &Stop,
+        left: u32,
+        weighs_counts: bool,
+    ) -> NodeStep {
+        if n <= stop.max_leaf_size || depth >= stop.max_depth {
+            return NodeStep::Leaf;
+        }
+        let leaves = n.div_ceil(stop.max_leaf_size);
+        let needed = u32::BITS - (leaves - 1).leading_zeros(); // ceil(log2(leaves))
+        if stop.max_depth - depth <= needed {
+            return NodeStep::Halve;
+        }
+        let smaller = left.min(n - left.min(n));
+        if smaller == 0 || (!weighs_counts && n >= 100 && smaller * 100 < n) {
+            return NodeStep::FallBack;
+        }
+        NodeStep::Split
     }
 }
