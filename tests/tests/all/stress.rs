@@ -9,7 +9,7 @@
 
 use crate::layouts::{run_all, run_boxes};
 use bvhkit::glam::Vec3;
-use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, Triangle};
+use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Node, Obb, Sphere, Triangle};
 use bvhkit_std::builders::{catalogue, Builder};
 use bvhkit_tests::proptest_config;
 use proptest::prelude::*;
@@ -92,49 +92,19 @@ fn stress_scene(max: usize) -> impl Strategy<Value = (Vec<Triangle>, String)> {
         })
 }
 
-/// Builds `a` and `b` with `builder` into volume `B` and checks every layout.
+/// Builds `a` and `b` with `builder` into volume `B`, then runs `layouts`
+/// (every layout's checks) on the two trees' nodes and indices.
 fn check<B: BoundingVolume>(
     name: &str,
     builder: &Builder,
-    a: &[Triangle],
-    b: &[Triangle],
-    probe: (f32, f32, f32),
+    (a, b): (&[Triangle], &[Triangle]),
+    layouts: impl FnOnce((&[Node<B>], &[u32]), (&[Node<B>], &[u32])) -> Result<(), TestCaseError>,
 ) -> Result<(), TestCaseError> {
-    let built = |p: &[Triangle]| {
-        builder
-            .build::<B>(p)
-            .map_err(|e| TestCaseError::fail(format!("{name} {}: {e}", B::NAME)))
-    };
+    let fail = |e: String| TestCaseError::fail(format!("{name} {}: {e}", B::NAME));
+    let built = |p: &[Triangle]| builder.build::<B>(p).map_err(|e| fail(e.to_string()));
     let (ta, tb) = (built(a)?, built(b)?);
     let (va, vb) = (ta.plain_view(), tb.plain_view());
-    let parts = |v: &bvhkit::Bvh<'_, B>| (v.nodes().to_vec(), v.indices().to_vec());
-    let ((na, ia), (nb, ib)) = (parts(&va), parts(&vb));
-    run_all((&na, &ia), (&nb, &ib), a, b, probe)
-        .map_err(|e| TestCaseError::fail(format!("{name} {}: {e}", B::NAME)))
-}
-
-fn check_boxes(
-    name: &str,
-    builder: &Builder,
-    a: &[Triangle],
-    b: &[Triangle],
-    probe: (f32, f32, f32),
-) -> Result<(), TestCaseError> {
-    let built = |p: &[Triangle]| {
-        builder
-            .build::<Aabb>(p)
-            .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))
-    };
-    let (ta, tb) = (built(a)?, built(b)?);
-    let (va, vb) = (ta.plain_view(), tb.plain_view());
-    run_boxes(
-        (va.nodes(), va.indices()),
-        (vb.nodes(), vb.indices()),
-        a,
-        b,
-        probe,
-    )
-    .map_err(|e| TestCaseError::fail(format!("{name} (4-wide layouts): {e}")))
+    layouts((va.nodes(), va.indices()), (vb.nodes(), vb.indices())).map_err(|e| fail(e.to_string()))
 }
 
 proptest! {
@@ -146,15 +116,17 @@ proptest! {
         (b, how_b) in stress_scene(24),
         probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
     ) {
+        let scenes = (a.as_slice(), b.as_slice());
         for (name, _, builder) in catalogue() {
             let context = |e: TestCaseError| TestCaseError::fail(format!("{e}\n  A: {how_a}\n  B: {how_b}"));
-            check::<Aabb>(name, &builder, &a, &b, probe).map_err(context)?;
-            check::<Sphere>(name, &builder, &a, &b, probe).map_err(context)?;
-            check::<Obb>(name, &builder, &a, &b, probe).map_err(context)?;
-            check::<Dop14>(name, &builder, &a, &b, probe).map_err(context)?;
-            check::<Dop18>(name, &builder, &a, &b, probe).map_err(context)?;
-            check::<Dop26>(name, &builder, &a, &b, probe).map_err(context)?;
-            check_boxes(name, &builder, &a, &b, probe).map_err(context)?;
+            check::<Aabb>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            check::<Sphere>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            check::<Obb>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            check::<Dop14>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            check::<Dop18>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            check::<Dop26>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            // The 4-wide layouts hold boxes only.
+            check::<Aabb>(name, &builder, scenes, |x, y| run_boxes(x, y, &a, &b, probe)).map_err(context)?;
         }
     }
 }
