@@ -214,8 +214,21 @@ pub fn check_against_brute_force<B: BoundingVolume>(
 ) -> Result<(), TestCaseError> {
     let (na, ia, _) = build::<B, _>(cfg, a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
     let (nb, ib, _) = build::<B, _>(cfg, b).map_err(|e| TestCaseError::fail(format!("{e}")))?;
-    let ta = open(&na, &ia, a);
-    let tb = open(&nb, &ib, b);
+    check_trees_against_brute_force((&na, &ia), a, (&nb, &ib), b, region, cfg)
+}
+
+/// [`check_against_brute_force`] on trees already built (any builder):
+/// validated, then every query checked. `cfg` names them in failures.
+pub fn check_trees_against_brute_force<B: BoundingVolume>(
+    (na, ia): (&[Node<B>], &[u32]),
+    a: &[Triangle],
+    (nb, ib): (&[Node<B>], &[u32]),
+    b: &[Triangle],
+    region: &Aabb,
+    cfg: &dyn std::fmt::Debug,
+) -> Result<(), TestCaseError> {
+    let ta = open(na, ia, a);
+    let tb = open(nb, ib, b);
 
     let mut got = Vec::new();
     let n = ta.overlapping(a, region, |i| got.push(i)).unwrap();

@@ -2,8 +2,9 @@
 //! duplicated triangles, placed at offsets from 1e-6 to 1e7 and scaled from
 //! 1e-3 to 1e3, built by every builder of the library (each top-down preset,
 //! PLOC, the exhaustive bottom-up, the insertion builders) into every volume
-//! type, then viewed in every layout; every answer (regions, rays, nearest,
-//! pairs under every traversal, same frame and moved) against brute force.
+//! type and viewed in every layout (AABB, sphere and 14-DOP trees; OBB and
+//! 18/26-DOP trees as built); every answer (regions, rays, nearest, pairs
+//! under every traversal, same frame and moved) against brute force.
 //!
 //! The default case count keeps CI fast; `PROPTEST_CASES=200` for a long run.
 
@@ -11,7 +12,7 @@ use crate::layouts::{run_all, run_boxes};
 use bvhkit::glam::Vec3;
 use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Node, Obb, Sphere, Triangle};
 use bvhkit_std::builders::{catalogue, Builder};
-use bvhkit_tests::proptest_config;
+use bvhkit_tests::{check_trees_against_brute_force, proptest_config, region_in};
 use proptest::prelude::*;
 
 /// One triangle's shape before placement.
@@ -117,14 +118,28 @@ proptest! {
         probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
     ) {
         let scenes = (a.as_slice(), b.as_slice());
+        let region = region_in(&a, probe.0, probe.1);
         for (name, _, builder) in catalogue() {
             let context = |e: TestCaseError| TestCaseError::fail(format!("{e}\n  A: {how_a}\n  B: {how_b}"));
+            // Every layout, for the volume types the layout tests instantiate.
             check::<Aabb>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
             check::<Sphere>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
-            check::<Obb>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
             check::<Dop14>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
-            check::<Dop18>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
-            check::<Dop26>(name, &builder, scenes, |x, y| run_all(x, y, &a, &b, probe)).map_err(context)?;
+            // The other volumes on the canonical tree, every query (every
+            // layout again would compile the layout checks three more
+            // times, minutes of CI for the same layout code).
+            check::<Obb>(name, &builder, scenes, |x, y| {
+                check_trees_against_brute_force(x, &a, y, &b, &region, &name)
+            })
+            .map_err(context)?;
+            check::<Dop18>(name, &builder, scenes, |x, y| {
+                check_trees_against_brute_force(x, &a, y, &b, &region, &name)
+            })
+            .map_err(context)?;
+            check::<Dop26>(name, &builder, scenes, |x, y| {
+                check_trees_against_brute_force(x, &a, y, &b, &region, &name)
+            })
+            .map_err(context)?;
             // The 4-wide layouts hold boxes only.
             check::<Aabb>(name, &builder, scenes, |x, y| run_boxes(x, y, &a, &b, probe)).map_err(context)?;
         }

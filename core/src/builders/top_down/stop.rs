@@ -99,7 +99,8 @@ impl TopDown {
     }
 }
 
-#[cfg(test)]
+// The count-blind criteria are compiled with the `strategies` feature.
+#[cfg(all(test, feature = "strategies"))]
 mod tests {
     use crate::builders::BuildReport;
     use crate::{Aabb, Node, Partition, TopDown, Triangle};
