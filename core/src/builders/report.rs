@@ -37,13 +37,14 @@
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BuildReport {
-    /// Nodes whose configured split failed and that another strategy split
-    /// instead: nothing separated, both halves nearly as large as the node,
-    /// or (for criteria that ignore how many primitives each side holds:
-    /// volume, larger child, overlap, separation) a lopsided cut leaving
-    /// under 1% of a node of 100 or more primitives on one side. The
-    /// fallbacks, in order: the criterion over x, y and z; binned SAH; the
-    /// object median.
+    /// Nodes whose configured split failed: nothing separated, both halves
+    /// nearly as large as the node, or (for criteria that ignore how many
+    /// primitives each side holds: volume, larger child, overlap,
+    /// separation) a lopsided cut leaving under 1% of a node of 100 or more
+    /// primitives on one side. The fallbacks, in order: the criterion over
+    /// x, y and z; binned SAH; the object median. When even that separates
+    /// nothing, [`OnFailure::Leaf`](crate::OnFailure::Leaf) makes the node a
+    /// leaf (then also counted in `oversized_leaves`).
     pub fallback_splits: u32,
     /// Interventions of the depth limit: top-down nodes halved at the object
     /// median because the levels left were only just enough, bottom-up
