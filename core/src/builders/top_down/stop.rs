@@ -57,26 +57,29 @@ impl TopDown {
         // be satisfied by cutting off a sliver (one triangle at the edge of a
         // curved mesh has no overlap with the rest): under 1% of a node of
         // 100 or more on one side counts as a failure for those.
-        let lopsided = |h: &Halves, partition: Partition| {
-            n >= 100 && h.mid.min(n - h.mid) * 100 < n && !partition.weighs_counts()
-        };
+        let count_blind = !self.partition.weighs_counts();
+        let lopsided = |h: &Halves| count_blind && n >= 100 && h.mid.min(n - h.mid) * 100 < n;
         if let Some(h) = attempt(self.axis, self.split, self.partition) {
-            if acceptable(&h) && !lopsided(&h, self.partition) {
+            if acceptable(&h) && !lopsided(&h) {
                 return Some(h);
             }
         }
         report.fallback_splits += 1;
         if self.axis != AxisChoice::BestOfXyz {
             if let Some(h) = attempt(AxisChoice::BestOfXyz, self.split, self.partition) {
-                if acceptable(&h) && !lopsided(&h, self.partition) {
+                if acceptable(&h) && !lopsided(&h) {
                     return Some(h);
                 }
             }
         }
-        if !self.partition.weighs_counts() {
+        if count_blind {
             // Another criterion: binned SAH, which prices each side's count.
-            let sah = (AxisChoice::BestOfXyz, SplitPoint::Bins(16));
-            if let Some(h) = attempt(sah.0, sah.1, Partition::SurfaceArea) {
+            let sah = attempt(
+                AxisChoice::BestOfXyz,
+                SplitPoint::Bins(16),
+                Partition::SurfaceArea,
+            );
+            if let Some(h) = sah {
                 if acceptable(&h) {
                     return Some(h);
                 }
