@@ -9,6 +9,7 @@ pub mod advisor;
 pub mod builders;
 pub mod collide;
 pub mod cost;
+pub mod cost_fit;
 pub mod layouts;
 pub mod mesh;
 pub mod motion;

@@ -112,6 +112,25 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Calibrate the cost function T = Nv*Cv + Nu*Cu + Np*Cp + Ne*Ce + Co from
+    /// measured queries: time every traversal on built-in training scenes
+    /// (round-robin, median of the rounds), fit the unit costs, then predict
+    /// scenes the fit never saw (the default rock pair and the given meshes)
+    /// and report how close each prediction is.
+    CostModel {
+        /// Mesh files to hold out (.obj, .stl, .ply or .off), each against a
+        /// moved copy of itself.
+        meshes: Vec<PathBuf>,
+        /// Rounds of timing; each query's median is used.
+        #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u64).range(1..=101))]
+        rounds: u64,
+        /// Small training scenes and a small held-out rock (seconds, not minutes).
+        #[arg(long)]
+        quick: bool,
+        /// Print every query (counts, measured and predicted time) as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Run time against error: fit every volume type (time against
     /// looseness), build with every builder (time against SAH cost and query
     /// time, Pareto front marked) and lay the tree out in every
@@ -451,6 +470,57 @@ fn main() -> ExitCode {
             } else {
                 ExitCode::FAILURE
             }
+        }
+        Command::CostModel {
+            meshes,
+            rounds,
+            quick,
+            json,
+        } => {
+            use bvhkit_std::cost_fit::{self, Scene};
+            let default = if quick {
+                ("rock 5 120".to_string(), bvhkit_std::scene::rock(4, 1))
+            } else {
+                let (a, _) = bvhkit_std::scene::default_pair();
+                (format!("rock {} (default)", a.len()), a)
+            };
+            let mut held_out = vec![Scene::new(&default.0, default.1, cost_fit::check_motions())];
+            for p in &meshes {
+                match bvhkit_std::mesh::load(p) {
+                    Ok(m) => {
+                        let name = p.file_stem().map_or_else(
+                            || p.display().to_string(),
+                            |s| s.to_string_lossy().into_owned(),
+                        );
+                        held_out.push(Scene::new(&name, m, cost_fit::check_motions()));
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                }
+            }
+            let training = cost_fit::training_scenes(quick);
+            let bar = spinner("measuring");
+            let report = cost_fit::run(&training, &held_out, rounds as usize, |what| {
+                bar.set_message(format!("cost model: {what}"))
+            });
+            bar.finish_and_clear();
+            let report = match report {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            if json {
+                if !print_json(&report) {
+                    return ExitCode::FAILURE;
+                }
+            } else {
+                print!("{}", cost_fit::render(&report));
+            }
+            ExitCode::SUCCESS
         }
         Command::Tour {
             json,
