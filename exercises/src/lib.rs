@@ -245,6 +245,17 @@ pub trait Exercises {
         left: u32,
         weighs_counts: bool,
     ) -> NodeStep;
+
+    /// Exercise 25: fit the unit costs `(Cv, Cp)` to measured queries.
+    /// Each sample is `(Nv, Np, t)`: a query's volume tests, primitive tests
+    /// and measured time. Return the `Cv >= 0, Cp >= 0` that minimise the
+    /// sum of squared *relative* errors, `((Nv*Cv + Np*Cp - t) / t)^2`.
+    /// Samples with `t <= 0` carry no information: skip them. When the best
+    /// unconstrained pair has a negative entry, the answer holds that one
+    /// at 0 and fits the other alone (or returns whichever of the two
+    /// one-cost fits leaves the smaller error). No usable sample (or only
+    /// zero counts): `(0.0, 0.0)`.
+    fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64);
 }
 
 /// What a top-down builder does with one node (exercise 24).

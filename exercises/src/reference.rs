@@ -425,4 +425,37 @@ impl Exercises for Reference {
         }
         NodeStep::Split
     }
+
+    fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64) {
+        // Divided by t, each sample asks (Nv/t)*Cv + (Np/t)*Cp = 1: least
+        // squares on the relative error is ordinary least squares on the
+        // scaled rows. The same sums give every candidate's error.
+        let (mut xx, mut xy, mut yy, mut x1, mut y1, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for &(nv, np, t) in samples {
+            if t <= 0.0 || !t.is_finite() {
+                continue;
+            }
+            let (x, y) = (nv as f64 / t, np as f64 / t);
+            (xx, xy, yy) = (xx + x * x, xy + x * y, yy + y * y);
+            (x1, y1, n) = (x1 + x, y1 + y, n + 1.0);
+        }
+        let error = |cv: f64, cp: f64| {
+            n - 2.0 * (cv * x1 + cp * y1) + cv * cv * xx + 2.0 * cv * cp * xy + cp * cp * yy
+        };
+        let det = xx * yy - xy * xy;
+        if det > 1e-12 * xx * yy {
+            let cv = (x1 * yy - y1 * xy) / det;
+            let cp = (xx * y1 - xy * x1) / det;
+            if cv >= 0.0 && cp >= 0.0 {
+                return (cv, cp);
+            }
+        }
+        let only_cv = if xx > 0.0 { (x1 / xx).max(0.0) } else { 0.0 };
+        let only_cp = if yy > 0.0 { (y1 / yy).max(0.0) } else { 0.0 };
+        if error(only_cv, 0.0) <= error(0.0, only_cp) {
+            (only_cv, 0.0)
+        } else {
+            (0.0, only_cp)
+        }
+    }
 }
