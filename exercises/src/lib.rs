@@ -256,6 +256,46 @@ pub trait Exercises {
     /// one-cost fits leaves the smaller error). No usable sample (or only
     /// zero counts): `(0.0, 0.0)`.
     fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64);
+
+    /// Exercise 26: where a top-down split goes, as `(axis, value)` with
+    /// axis 0 = x, 1 = y, 2 = z: the plane `coordinate[axis] = value`.
+    /// `axis` picks the coordinate axis from the centroids:
+    /// [`AxisRule::Longest`] the largest extent (max - min),
+    /// [`AxisRule::Variance`] the largest population variance
+    /// (`sum((c - mean)^2) / n`, in `f64`); a tie goes to the lower axis.
+    /// `point` places the plane on that axis: [`PointRule::ObjectMedian`]
+    /// the coordinate at index `n / 2` of the sorted coordinates (the upper
+    /// middle for even `n`), [`PointRule::ObjectMean`] the mean and
+    /// [`PointRule::SpatialMedian`] the middle of the extent, `(min + max) / 2`,
+    /// both computed in `f64` and returned rounded to `f32`. No centroids:
+    /// `None`.
+    fn split_plane(
+        &self,
+        centroids: &[Vec3],
+        axis: AxisRule,
+        point: PointRule,
+    ) -> Option<(usize, f32)>;
+}
+
+/// The axis choices of exercise 26 (the library's [`bvhkit::AxisChoice`]
+/// has more, and directions that are not coordinate axes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisRule {
+    /// The coordinate axis along which the centroids spread furthest.
+    Longest,
+    /// The coordinate axis along which the centroids vary most.
+    Variance,
+}
+
+/// The split points of exercise 26 (the library's [`bvhkit::SplitPoint`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PointRule {
+    /// The middle centroid: equal halves.
+    ObjectMedian,
+    /// The mean of the centroids.
+    ObjectMean,
+    /// The middle of the centroids' extent.
+    SpatialMedian,
 }
 
 /// What a top-down builder does with one node (exercise 24).

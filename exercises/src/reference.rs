@@ -1,6 +1,6 @@
 //! Reference answers, written with the library.
 
-use crate::{Exercises, NodeStep};
+use crate::{AxisRule, Exercises, NodeStep, PointRule};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
@@ -457,5 +457,51 @@ impl Exercises for Reference {
         } else {
             (0.0, only_cp)
         }
+    }
+
+    fn split_plane(
+        &self,
+        centroids: &[Vec3],
+        axis: AxisRule,
+        point: PointRule,
+    ) -> Option<(usize, f32)> {
+        if centroids.is_empty() {
+            return None;
+        }
+        let n = centroids.len() as f64;
+        let on = |k: usize| centroids.iter().map(move |c| c[k] as f64);
+        let score = |k: usize| match axis {
+            AxisRule::Longest => {
+                let (lo, hi) = on(k).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                    (l.min(x), h.max(x))
+                });
+                hi - lo
+            }
+            AxisRule::Variance => {
+                let mean = on(k).sum::<f64>() / n;
+                on(k).map(|x| (x - mean) * (x - mean)).sum::<f64>() / n
+            }
+        };
+        let mut best = 0;
+        for k in 1..3 {
+            if score(k) > score(best) {
+                best = k;
+            }
+        }
+        let value = match point {
+            PointRule::ObjectMedian => {
+                let mut xs: Vec<f32> = centroids.iter().map(|c| c[best]).collect();
+                xs.sort_by(f32::total_cmp);
+                xs[xs.len() / 2]
+            }
+            PointRule::ObjectMean => (on(best).sum::<f64>() / n) as f32,
+            PointRule::SpatialMedian => {
+                let (lo, hi) = on(best).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                    (l.min(x), h.max(x))
+                });
+                ((lo + hi) / 2.0) as f32
+            }
+        };
+        Some((best, value))
     }
 }
