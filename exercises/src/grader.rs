@@ -36,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 26] = [
+pub const EXERCISES: [(u32, &str); 27] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -69,6 +69,7 @@ pub const EXERCISES: [(u32, &str); 26] = [
     (24, "stopping and falling back"),
     (25, "fitting unit costs to measured queries"),
     (26, "axis choice and split point"),
+    (27, "measuring a tree: depth, leaf depth, SAH cost"),
 ];
 
 /// A score for one exercise.
@@ -1578,7 +1579,97 @@ pub fn checks() -> Vec<Check> {
                     })
             },
         },
+        // Exercise 27
+        Check {
+            exercise: 27,
+            name: "depths: the root at 0, the mean over leaves (not primitives), a one-leaf tree",
+            points: 5,
+            run: |e| {
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+                measured_trees().iter().all(|(tris, leaf)| {
+                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+                    let mut idx = vec![0u32; tris.len()];
+                    let Ok(tree) = TopDown::sah()
+                        .with_max_leaf_size(*leaf)
+                        .build(tris, &mut nodes, &mut idx)
+                    else {
+                        return false;
+                    };
+                    let (got, want) = (e.tree_measures(&tree), Reference.tree_measures(&tree));
+                    let stats = tree.stats();
+                    got.max_depth == want.max_depth
+                        && close(got.mean_leaf_depth, want.mean_leaf_depth)
+                        && want.max_depth == stats.max_depth
+                        && close(want.mean_leaf_depth, stats.mean_leaf_depth)
+                }) && {
+                    // One leaf of three: depth 0, and the SAH counts its three tests.
+                    let tris = &measured_trees()[1].0;
+                    let mut nodes = vec![Node::<Aabb>::EMPTY; 1];
+                    let mut idx = vec![0u32; tris.len()];
+                    TopDown::sah()
+                        .with_max_leaf_size(8)
+                        .build(tris, &mut nodes, &mut idx)
+                        .is_ok_and(|t| {
+                            let m = e.tree_measures(&t);
+                            m.max_depth == 0 && m.mean_leaf_depth == 0.0 && close(m.sah_cost, 3.0)
+                        })
+                }
+            },
+        },
+        Check {
+            exercise: 27,
+            name: "SAH cost: internal nodes once, leaves times their size, areas relative to the root in f64",
+            points: 5,
+            run: |e| {
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+                measured_trees().iter().all(|(tris, leaf)| {
+                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+                    let mut idx = vec![0u32; tris.len()];
+                    let Ok(tree) = TopDown::sah()
+                        .with_max_leaf_size(*leaf)
+                        .build(tris, &mut nodes, &mut idx)
+                    else {
+                        return false;
+                    };
+                    let (got, want) = (e.tree_measures(&tree), Reference.tree_measures(&tree));
+                    close(got.sah_cost, want.sah_cost)
+                        && (want.sah_cost - tree.stats().sah_cost).abs()
+                            <= 1e-4 * want.sah_cost.max(1.0)
+                })
+            },
+        },
     ]
+}
+
+/// Triangles for exercise 27, each with a leaf size: empty, three (one
+/// leaf), a row of 40 in leaves of one, 300 scattered, and 50 spread over
+/// 1e30 (areas past f32's range).
+fn measured_trees() -> Vec<(Vec<Triangle>, u32)> {
+    let mut r = Rng(2727);
+    let tri = |o: Vec3, s: f32| Triangle::new(o, o + Vec3::X * s, o + Vec3::Y * s);
+    let mut out = vec![
+        (Vec::new(), 4),
+        ((0..3).map(|i| tri(Vec3::splat(i as f32), 0.5)).collect(), 4),
+        (
+            (0..40)
+                .map(|i| tri(Vec3::new(i as f32 * 2.0, 0.0, 0.0), 1.0))
+                .collect(),
+            1,
+        ),
+    ];
+    out.push((
+        (0..300)
+            .map(|_| tri(r.point(50.0, Vec3::ZERO), 1.0 + r.next()))
+            .collect(),
+        4,
+    ));
+    out.push((
+        (0..50)
+            .map(|_| tri(r.point(1e30, Vec3::ZERO), 1e28))
+            .collect(),
+        2,
+    ));
+    out
 }
 
 /// Triangles for exercise 23: empty, one, and grids whose leaves of up to
@@ -2109,7 +2200,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 280/280 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 290/290 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -2975,6 +3066,59 @@ mod tests {
                 _ => Some(right),
             }
         }
+
+        fn tree_measures(&self, tree: &Bvh<Aabb>) -> crate::TreeMeasures {
+            let right = Reference.tree_measures(tree);
+            let nodes = tree.nodes();
+            if nodes.is_empty() {
+                return right;
+            }
+            let area = |b: &Aabb| {
+                let e = b.max.as_dvec3() - b.min.as_dvec3();
+                2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+            };
+            let root = area(&nodes[0].bv);
+            // (depth, node) for every node, the root at 0.
+            let mut all = Vec::new();
+            let mut stack = vec![(0u32, 0usize)];
+            while let Some((i, d)) = stack.pop() {
+                all.push((d, &nodes[i as usize]));
+                if let Some((l, r)) = nodes[i as usize].children() {
+                    stack.extend([(l, d + 1), (r, d + 1)]);
+                }
+            }
+            let leaves = || all.iter().filter(|(_, n)| n.is_leaf());
+            match self.0 {
+                // The mean weighted by primitives.
+                76 => {
+                    let prims: f64 = leaves().map(|(_, n)| n.count as f64).sum();
+                    let sum: f64 = leaves().map(|(d, n)| *d as f64 * n.count as f64).sum();
+                    crate::TreeMeasures {
+                        mean_leaf_depth: sum / prims,
+                        ..right
+                    }
+                }
+                // Leaves counted once, not times their size.
+                77 => crate::TreeMeasures {
+                    sah_cost: all.iter().map(|(_, n)| area(&n.bv) / root).sum(),
+                    ..right
+                },
+                // Internal nodes left out.
+                78 => crate::TreeMeasures {
+                    sah_cost: leaves()
+                        .map(|(_, n)| area(&n.bv) / root * n.count as f64)
+                        .sum(),
+                    ..right
+                },
+                // The root at depth 1.
+                79 => crate::TreeMeasures {
+                    max_depth: right.max_depth + 1,
+                    mean_leaf_depth: right.mean_leaf_depth + 1.0,
+                    ..right
+                },
+                _ => right,
+            }
+        }
     }
 
     #[test]
@@ -3055,6 +3199,10 @@ mod tests {
             (73, 26),
             (74, 26),
             (75, 26),
+            (76, 27),
+            (77, 27),
+            (78, 27),
+            (79, 27),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

@@ -275,6 +275,30 @@ pub trait Exercises {
         axis: AxisRule,
         point: PointRule,
     ) -> Option<(usize, f32)>;
+
+    /// Exercise 27: measure a tree against the desired characteristics.
+    /// `max_depth`: the deepest leaf's depth, the root at 0.
+    /// `mean_leaf_depth`: the mean over leaves (each leaf counts once,
+    /// whatever it holds). `sah_cost`: the sum over internal nodes of
+    /// `A(n) / A(root)` plus the sum over leaves of
+    /// `A(l) / A(root) * count(l)`, with `A` the box's surface area
+    /// `2 (xy + yz + zx)`, the corners widened to `f64` before subtracting
+    /// (a box 1e30 wide has an area past `f32`'s range); when the
+    /// root's area is 0 every ratio counts as 1. An empty tree measures
+    /// all zeros.
+    fn tree_measures(&self, tree: &Bvh<Aabb>) -> TreeMeasures;
+}
+
+/// What exercise 27 measures (the library's `Bvh::stats` reports these and
+/// more).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct TreeMeasures {
+    /// Depth of the deepest leaf (root = 0).
+    pub max_depth: usize,
+    /// Mean depth of the leaves.
+    pub mean_leaf_depth: f64,
+    /// SAH cost with one unit per node visit and per primitive test.
+    pub sah_cost: f64,
 }
 
 /// The axis choices of exercise 26 (the library's [`bvhkit::AxisChoice`]

@@ -1,6 +1,6 @@
 //! Reference answers, written with the library.
 
-use crate::{AxisRule, Exercises, NodeStep, PointRule};
+use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
@@ -503,5 +503,44 @@ impl Exercises for Reference {
             }
         };
         Some((best, value))
+    }
+
+    fn tree_measures(&self, tree: &Bvh<Aabb>) -> TreeMeasures {
+        let nodes = tree.nodes();
+        let area = |b: &Aabb| {
+            let e = b.max.as_dvec3() - b.min.as_dvec3();
+            2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+        };
+        let Some(root) = nodes.first() else {
+            return TreeMeasures::default();
+        };
+        let root_area = area(&root.bv);
+        let ratio = |b: &Aabb| {
+            if root_area > 0.0 {
+                area(b) / root_area
+            } else {
+                1.0
+            }
+        };
+        let (mut m, mut leaves, mut depth_sum) = (TreeMeasures::default(), 0usize, 0usize);
+        let mut stack = vec![(0u32, 0usize)];
+        while let Some((i, depth)) = stack.pop() {
+            let node = &nodes[i as usize];
+            match node.children() {
+                Some((l, r)) => {
+                    m.sah_cost += ratio(&node.bv);
+                    stack.push((l, depth + 1));
+                    stack.push((r, depth + 1));
+                }
+                None => {
+                    m.sah_cost += ratio(&node.bv) * node.count as f64;
+                    m.max_depth = m.max_depth.max(depth);
+                    leaves += 1;
+                    depth_sum += depth;
+                }
+            }
+        }
+        m.mean_leaf_depth = depth_sum as f64 / leaves as f64;
+        m
     }
 }
