@@ -36,7 +36,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 27] = [
+pub const EXERCISES: [(u32, &str); 28] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -70,6 +70,7 @@ pub const EXERCISES: [(u32, &str); 27] = [
     (25, "fitting unit costs to measured queries"),
     (26, "axis choice and split point"),
     (27, "measuring a tree: depth, leaf depth, SAH cost"),
+    (28, "tri-nodes: records and wasted slots"),
 ];
 
 /// A score for one exercise.
@@ -1638,6 +1639,67 @@ pub fn checks() -> Vec<Check> {
                 })
             },
         },
+        // Exercise 28
+        Check {
+            exercise: 28,
+            name: "tri-node records: one per node at an even depth, as TriNodes stores them",
+            points: 5,
+            run: |e| {
+                use bvhkit::layout::{TriNode, TriNodes};
+                measured_trees().iter().all(|(tris, leaf)| {
+                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+                    let mut idx = vec![0u32; tris.len()];
+                    let Ok(tree) = TopDown::sah()
+                        .with_max_leaf_size(*leaf)
+                        .build(tris, &mut nodes, &mut idx)
+                    else {
+                        return false;
+                    };
+                    let got = e.tri_node_records(&tree).0;
+                    let Ok(n) = TriNodes::records_needed(&tree) else {
+                        return false;
+                    };
+                    let mut recs = vec![TriNode::EMPTY; n];
+                    got == n
+                        && (tree.is_empty()
+                            || TriNodes::from_bvh(&tree, &mut recs)
+                                .is_ok_and(|t| t.records().len() == got))
+                })
+            },
+        },
+        Check {
+            exercise: 28,
+            name: "tri-node waste: two empty slots per record rooted at a leaf",
+            points: 5,
+            run: |e| {
+                use bvhkit::layout::{TriNode, TriNodes};
+                measured_trees().iter().all(|(tris, leaf)| {
+                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+                    let mut idx = vec![0u32; tris.len()];
+                    let Ok(tree) = TopDown::sah()
+                        .with_max_leaf_size(*leaf)
+                        .build(tris, &mut nodes, &mut idx)
+                    else {
+                        return false;
+                    };
+                    let (records, unused) = e.tri_node_records(&tree);
+                    let Ok(n) = TriNodes::records_needed(&tree) else {
+                        return false;
+                    };
+                    let mut recs = vec![TriNode::EMPTY; n];
+                    // The library's records: 3 slots each, `used()` of them filled.
+                    let library = if tree.is_empty() {
+                        0
+                    } else {
+                        match TriNodes::from_bvh(&tree, &mut recs) {
+                            Ok(t) => t.records().iter().map(|r| 3 - r.used() as usize).sum(),
+                            Err(_) => return false,
+                        }
+                    };
+                    records == n && unused == library
+                })
+            },
+        },
     ]
 }
 
@@ -2200,7 +2262,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 290/290 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 300/300 points (100%)\n"));
     }
 
     /// Plausible wrong answers, each delegating everything else to the reference.
@@ -3119,6 +3181,24 @@ mod tests {
                 _ => right,
             }
         }
+
+        fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize) {
+            let right = Reference.tri_node_records(tree);
+            let nodes = tree.nodes();
+            let leaves = nodes.iter().filter(|n| n.is_leaf()).count();
+            match self.0 {
+                // A third of the nodes, as if every record were full.
+                80 => (nodes.len().div_ceil(3), right.1),
+                // Records at odd depths instead (the root taken as depth 1).
+                81 => {
+                    let (records, _) = Reference.tri_node_records(tree);
+                    (nodes.len() - records, right.1)
+                }
+                // Two wasted slots for every leaf, at any depth.
+                82 => (right.0, 2 * leaves),
+                _ => right,
+            }
+        }
     }
 
     #[test]
@@ -3203,6 +3283,9 @@ mod tests {
             (77, 27),
             (78, 27),
             (79, 27),
+            (80, 28),
+            (81, 28),
+            (82, 28),
         ] {
             // Leaked: each check runs on a thread that may outlive the call.
             let (e, p) = earned(Box::leak(Box::new(Wrong(wrong))), exercise);

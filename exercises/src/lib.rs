@@ -287,6 +287,15 @@ pub trait Exercises {
     /// root's area is 0 every ratio counts as 1. An empty tree measures
     /// all zeros.
     fn tree_measures(&self, tree: &Bvh<Aabb>) -> TreeMeasures;
+
+    /// Exercise 28: the cost of storing `tree` as tri-nodes (a parent and
+    /// both its children fused in one record, as `bvhkit::layout::TriNodes`
+    /// does). Return `(records, unused_slots)`: a record is rooted at every
+    /// node at an even depth (the root at 0), so `records` counts those
+    /// nodes; a record rooted at a leaf fills one of its three volume slots
+    /// and wastes the other two, so `unused_slots` is twice the number of
+    /// leaves at an even depth. An empty tree: `(0, 0)`.
+    fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

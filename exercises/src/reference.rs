@@ -543,4 +543,27 @@ impl Exercises for Reference {
         m.mean_leaf_depth = depth_sum as f64 / leaves as f64;
         m
     }
+
+    fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize) {
+        let nodes = tree.nodes();
+        if nodes.is_empty() {
+            return (0, 0);
+        }
+        let (mut records, mut unused) = (0, 0);
+        let mut stack = vec![(0u32, 0usize)];
+        while let Some((i, depth)) = stack.pop() {
+            let node = &nodes[i as usize];
+            let children = node.children();
+            if depth % 2 == 0 {
+                records += 1;
+                if children.is_none() {
+                    unused += 2;
+                }
+            }
+            if let Some((l, r)) = children {
+                stack.extend([(l, depth + 1), (r, depth + 1)]);
+            }
+        }
+        (records, unused)
+    }
 }
