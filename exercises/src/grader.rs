@@ -1587,16 +1587,8 @@ pub fn checks() -> Vec<Check> {
             points: 5,
             run: |e| {
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
-                measured_trees().iter().all(|(tris, leaf)| {
-                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
-                    let mut idx = vec![0u32; tris.len()];
-                    let Ok(tree) = TopDown::sah()
-                        .with_max_leaf_size(*leaf)
-                        .build(tris, &mut nodes, &mut idx)
-                    else {
-                        return false;
-                    };
-                    let (got, want) = (e.tree_measures(&tree), Reference.tree_measures(&tree));
+                on_measured_trees(|tree| {
+                    let (got, want) = (e.tree_measures(tree), Reference.tree_measures(tree));
                     let stats = tree.stats();
                     got.max_depth == want.max_depth
                         && close(got.mean_leaf_depth, want.mean_leaf_depth)
@@ -1623,16 +1615,8 @@ pub fn checks() -> Vec<Check> {
             points: 5,
             run: |e| {
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
-                measured_trees().iter().all(|(tris, leaf)| {
-                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
-                    let mut idx = vec![0u32; tris.len()];
-                    let Ok(tree) = TopDown::sah()
-                        .with_max_leaf_size(*leaf)
-                        .build(tris, &mut nodes, &mut idx)
-                    else {
-                        return false;
-                    };
-                    let (got, want) = (e.tree_measures(&tree), Reference.tree_measures(&tree));
+                on_measured_trees(|tree| {
+                    let (got, want) = (e.tree_measures(tree), Reference.tree_measures(tree));
                     close(got.sah_cost, want.sah_cost)
                         && (want.sah_cost - tree.stats().sah_cost).abs()
                             <= 1e-4 * want.sah_cost.max(1.0)
@@ -1646,23 +1630,15 @@ pub fn checks() -> Vec<Check> {
             points: 5,
             run: |e| {
                 use bvhkit::layout::{TriNode, TriNodes};
-                measured_trees().iter().all(|(tris, leaf)| {
-                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
-                    let mut idx = vec![0u32; tris.len()];
-                    let Ok(tree) = TopDown::sah()
-                        .with_max_leaf_size(*leaf)
-                        .build(tris, &mut nodes, &mut idx)
-                    else {
-                        return false;
-                    };
-                    let got = e.tri_node_records(&tree).0;
-                    let Ok(n) = TriNodes::records_needed(&tree) else {
+                on_measured_trees(|tree| {
+                    let got = e.tri_node_records(tree).0;
+                    let Ok(n) = TriNodes::records_needed(tree) else {
                         return false;
                     };
                     let mut recs = vec![TriNode::EMPTY; n];
                     got == n
                         && (tree.is_empty()
-                            || TriNodes::from_bvh(&tree, &mut recs)
+                            || TriNodes::from_bvh(tree, &mut recs)
                                 .is_ok_and(|t| t.records().len() == got))
                 })
             },
@@ -1673,17 +1649,9 @@ pub fn checks() -> Vec<Check> {
             points: 5,
             run: |e| {
                 use bvhkit::layout::{TriNode, TriNodes};
-                measured_trees().iter().all(|(tris, leaf)| {
-                    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
-                    let mut idx = vec![0u32; tris.len()];
-                    let Ok(tree) = TopDown::sah()
-                        .with_max_leaf_size(*leaf)
-                        .build(tris, &mut nodes, &mut idx)
-                    else {
-                        return false;
-                    };
-                    let (records, unused) = e.tri_node_records(&tree);
-                    let Ok(n) = TriNodes::records_needed(&tree) else {
+                on_measured_trees(|tree| {
+                    let (records, unused) = e.tri_node_records(tree);
+                    let Ok(n) = TriNodes::records_needed(tree) else {
                         return false;
                     };
                     let mut recs = vec![TriNode::EMPTY; n];
@@ -1691,7 +1659,7 @@ pub fn checks() -> Vec<Check> {
                     let library = if tree.is_empty() {
                         0
                     } else {
-                        match TriNodes::from_bvh(&tree, &mut recs) {
+                        match TriNodes::from_bvh(tree, &mut recs) {
                             Ok(t) => t.records().iter().map(|r| 3 - r.used() as usize).sum(),
                             Err(_) => return false,
                         }
@@ -1701,6 +1669,19 @@ pub fn checks() -> Vec<Check> {
             },
         },
     ]
+}
+
+/// Builds an SAH tree over each of [`measured_trees`] and asks `check` about
+/// it; false if any build fails or any answer is false.
+fn on_measured_trees(check: impl Fn(&Bvh<Aabb>) -> bool) -> bool {
+    measured_trees().iter().all(|(tris, leaf)| {
+        let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
+        let mut idx = vec![0u32; tris.len()];
+        TopDown::sah()
+            .with_max_leaf_size(*leaf)
+            .build(tris, &mut nodes, &mut idx)
+            .is_ok_and(|tree| check(&tree))
+    })
 }
 
 /// Triangles for exercise 27, each with a leaf size: empty, three (one

@@ -11,8 +11,8 @@
 
 use crate::{median_time, OwnedBvh};
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Descent, Exact, PairTraversal, Pairs, Place,
-    Primitive, Rigid, TopDown, Triangle,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Exact, PairTraversal, Pairs, Place, Primitive,
+    Rigid, TopDown, Triangle,
 };
 use serde::Serialize;
 use std::hint::black_box;
@@ -178,15 +178,8 @@ pub fn rule_table<B: BoundingVolume>(
     model: &CostModel,
     runs: usize,
 ) -> Result<Vec<CostRow>, bvhkit::Error> {
-    let mut configs: Vec<PairTraversal> = Descent::ALL
-        .iter()
-        .map(|&d| PairTraversal::Stack(d))
-        .collect();
-    configs.push(PairTraversal::Recursive(Descent::Larger));
-    configs.push(PairTraversal::SIMULTANEOUS);
-    configs.push(PairTraversal::LEAF_DIRECTED);
     let mut rows = Vec::new();
-    for traversal in configs {
+    for traversal in crate::cost_fit::traversals() {
         let q = || {
             Pairs::new(ta, a, tb, b)
                 .traversal(traversal)

@@ -252,6 +252,16 @@ fn parse_vec3(s: &str) -> Result<Vec3Arg, String> {
     Ok(Vec3Arg(bvhkit::glam::Vec3::new(num(x)?, num(y)?, num(z)?)))
 }
 
+/// Prints `report` as JSON or as `render` makes it; false if JSON failed.
+fn show<T: serde::Serialize>(report: &T, json: bool, render: impl Fn(&T) -> String) -> bool {
+    if json {
+        print_json(report)
+    } else {
+        print!("{}", render(report));
+        true
+    }
+}
+
 fn print_json<T: serde::Serialize>(value: &T) -> bool {
     match serde_json::to_string_pretty(value) {
         Ok(s) => {
@@ -506,21 +516,14 @@ fn main() -> ExitCode {
                 bar.set_message(format!("cost model: {what}"))
             });
             bar.finish_and_clear();
-            let report = match report {
-                Ok(r) => r,
+            match report {
+                Ok(r) if show(&r, json, cost_fit::render) => ExitCode::SUCCESS,
+                Ok(_) => ExitCode::FAILURE,
                 Err(e) => {
                     eprintln!("error: {e}");
-                    return ExitCode::FAILURE;
+                    ExitCode::FAILURE
                 }
-            };
-            if json {
-                if !print_json(&report) {
-                    return ExitCode::FAILURE;
-                }
-            } else {
-                print!("{}", cost_fit::render(&report));
             }
-            ExitCode::SUCCESS
         }
         Command::Tour {
             json,
