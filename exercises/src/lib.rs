@@ -296,6 +296,21 @@ pub trait Exercises {
     /// and wastes the other two, so `unused_slots` is twice the number of
     /// leaves at an even depth. An empty tree: `(0, 0)`.
     fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize);
+
+    /// Exercise 29: the tightest oriented box with the given orthonormal
+    /// `axes` around `points` (the second half of OBB fitting; the first
+    /// picks the axes, for example by PCA). It must contain every point
+    /// exactly: for each point `p` and axis `k`,
+    /// `|axes[k] . (p - center)| <= half_extents[k]`, evaluated in `f64` on
+    /// the `f32` values returned. And it must be tight: each half extent at
+    /// most `1e-5` (relative) above the exact one (half the projection
+    /// range), plus what rounding costs far from the origin (the centre
+    /// rounded to `f32`, and `f32` axes orthonormal only to about `1e-7`):
+    /// `2^-20 * max|center coordinate|`. `Obb::EMPTY` for no
+    /// points. Work in `f64`, place the centre at the middle of each axis's
+    /// projection range, then measure the half extents from the centre as
+    /// rounded to `f32`, and round them up.
+    fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb;
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -566,4 +566,8 @@ impl Exercises for Reference {
         }
         (records, unused)
     }
+
+    fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb {
+        Obb::fit_with_axes(points, axes)
+    }
 }
