@@ -488,13 +488,13 @@ fn main() -> ExitCode {
             json,
         } => {
             use bvhkit_std::cost_fit::{self, Scene};
-            let default = if quick {
-                ("rock 5 120".to_string(), bvhkit_std::scene::rock(4, 1))
+            let (rock, label) = if quick {
+                (bvhkit_std::scene::rock(4, 1), "")
             } else {
-                let (a, _) = bvhkit_std::scene::default_pair();
-                (format!("rock {} (default)", a.len()), a)
+                (bvhkit_std::scene::default_pair().0, " (default)")
             };
-            let mut held_out = vec![Scene::new(&default.0, default.1, cost_fit::check_motions())];
+            let name = format!("rock {}{label}", rock.len());
+            let mut held_out = vec![Scene::new(&name, rock, cost_fit::check_motions())];
             for p in &meshes {
                 match bvhkit_std::mesh::load(p) {
                     Ok(m) => {
