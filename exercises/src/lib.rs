@@ -311,6 +311,16 @@ pub trait Exercises {
     /// projection range, then measure the half extents from the centre as
     /// rounded to `f32`, and round them up.
     fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb;
+
+    /// Exercise 30: offsets instead of pointers. In preorder a node's left
+    /// child is the next record, so only the right child needs a link, and
+    /// stored as an offset from its parent that link is
+    /// `1 + (nodes in the left subtree)`. Return `(as_built, smaller_first)`:
+    /// the largest such offset over the tree's internal nodes with the
+    /// children in the order the tree has them (`Node::children`'s first
+    /// is the left), and the largest when every node puts its smaller
+    /// subtree first. A tree without internal nodes: `(0, 0)`.
+    fn preorder_offsets(&self, tree: &Bvh<Aabb>) -> (usize, usize);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -570,4 +570,24 @@ impl Exercises for Reference {
     fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb {
         Obb::fit_with_axes(points, axes)
     }
+
+    fn preorder_offsets(&self, tree: &Bvh<Aabb>) -> (usize, usize) {
+        let nodes = tree.nodes();
+        // Children come after their parent: fill subtree sizes backwards.
+        let mut size = vec![1usize; nodes.len()];
+        for i in (0..nodes.len()).rev() {
+            if let Some((l, r)) = nodes[i].children() {
+                size[i] = 1 + size[l as usize] + size[r as usize];
+            }
+        }
+        let (mut as_built, mut smaller_first) = (0, 0);
+        for node in nodes {
+            if let Some((l, r)) = node.children() {
+                let (l, r) = (size[l as usize], size[r as usize]);
+                as_built = as_built.max(1 + l);
+                smaller_first = smaller_first.max(1 + l.min(r));
+            }
+        }
+        (as_built, smaller_first)
+    }
 }
