@@ -321,6 +321,19 @@ pub trait Exercises {
     /// is the left), and the largest when every node puts its smaller
     /// subtree first. A tree without internal nodes: `(0, 0)`.
     fn preorder_offsets(&self, tree: &Bvh<Aabb>) -> (usize, usize);
+
+    /// Exercise 31: the collision system's two phases. `boxes[i]` is object
+    /// `i`'s world box. Broad phase: every pair `a < b` whose boxes overlap
+    /// (`Aabb::overlaps`: touching counts). Narrow phase: call
+    /// `narrow(a, b)` exactly once for each such pair, and never for any
+    /// other pair; it returns the pair's primitive contacts `(pa, pb)`.
+    /// Return every contact as `((a, b), (pa, pb))`, ordered by `(a, b)`,
+    /// and within a pair in the order `narrow` gave them.
+    fn collide_objects(
+        &self,
+        boxes: &[Aabb],
+        narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
+    ) -> Vec<((u32, u32), (u32, u32))>;
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -590,4 +590,37 @@ impl Exercises for Reference {
         }
         (as_built, smaller_first)
     }
+
+    fn collide_objects(
+        &self,
+        boxes: &[Aabb],
+        narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
+    ) -> Vec<((u32, u32), (u32, u32))> {
+        // Broad phase: a tree over the non-empty object boxes (an empty box
+        // has infinite corners, which a builder rejects, and overlaps
+        // nothing) queried against itself: each unordered pair shows up
+        // twice, and every object with itself.
+        let ids: Vec<u32> = (0..boxes.len() as u32)
+            .filter(|&i| boxes[i as usize].min.cmple(boxes[i as usize].max).all())
+            .collect();
+        let kept: Vec<Aabb> = ids.iter().map(|&i| boxes[i as usize]).collect();
+        let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(kept.len())];
+        let mut idx = vec![0u32; kept.len()];
+        let mut pairs = Vec::new();
+        if let Ok(tree) = bvhkit::TopDown::default().build(&kept, &mut nodes, &mut idx) {
+            let _ = Pairs::new(&tree, &kept, &tree, &kept).for_each(|a, b| {
+                let (a, b) = (ids[a as usize], ids[b as usize]);
+                if a < b {
+                    pairs.push((a, b));
+                }
+            });
+        }
+        pairs.sort_unstable();
+        // Narrow phase, pair by pair.
+        let mut out = Vec::new();
+        for (a, b) in pairs {
+            out.extend(narrow(a, b).into_iter().map(|p| ((a, b), p)));
+        }
+        out
+    }
 }
