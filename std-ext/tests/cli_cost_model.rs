@@ -76,6 +76,38 @@ fn quick_run_fits_four_volumes_and_predicts_every_held_out_query() {
 }
 
 #[test]
+fn a_mesh_without_triangles_is_noted_and_left_out() {
+    let dir = std::env::temp_dir().join(format!("bvhkit-cli-cost-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let empty = dir.join("nothing.obj");
+    std::fs::write(&empty, "# vertices only\nv 0 0 0\nv 1 0 0\n").unwrap();
+    let out = bvhkit(&[
+        "cost-model",
+        "--quick",
+        "--rounds",
+        "1",
+        "--json",
+        empty.to_str().unwrap(),
+    ]);
+    let (text, err) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{text}{err}");
+    assert!(err.contains("nothing.obj has no triangles"), "{err}");
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let rows = report["rows"].as_array().unwrap();
+    assert!(rows.iter().all(|r| r["scene"] != "nothing"));
+    // Only the quick rock is held out: two motions x nine traversals x four volumes.
+    assert_eq!(
+        rows.iter()
+            .filter(|r| r["held_out"].as_bool().unwrap())
+            .count(),
+        72
+    );
+}
+
+#[test]
 fn a_bad_mesh_file_is_an_error_naming_it() {
     let out = bvhkit(&["cost-model", "--quick", "--rounds", "1", "no/such/mesh.obj"]);
     assert!(!out.status.success());

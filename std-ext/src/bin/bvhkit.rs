@@ -497,6 +497,11 @@ fn main() -> ExitCode {
             let mut held_out = vec![Scene::new(&name, rock, cost_fit::check_motions())];
             for p in &meshes {
                 match bvhkit_std::mesh::load(p) {
+                    // An empty scene is valid, but its queries are only fixed
+                    // cost: nothing for the model to predict.
+                    Ok(m) if m.is_empty() => {
+                        eprintln!("note: {} has no triangles: nothing to predict", p.display())
+                    }
                     Ok(m) => {
                         let name = p.file_stem().map_or_else(
                             || p.display().to_string(),
