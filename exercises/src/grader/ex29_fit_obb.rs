@@ -1,0 +1,184 @@
+//! Exercise 29: the checks, and the plausible wrong answers they must reject.
+
+use super::common::*;
+
+/// The checks of exercise 29.
+pub fn checks() -> Vec<Check> {
+    vec![
+        Check {
+            exercise: 29,
+            name: "OBB fit: every point inside in exact arithmetic, also far from the origin",
+            points: 5,
+            run: |e| {
+                let mut r = Rng(2929);
+                obb_cases(&mut r).iter().all(|(pts, axes)| {
+                    let b = e.fit_obb(pts, *axes);
+                    !pts.is_empty() && obb_contains(&b, pts) && b.axes == *axes
+                }) && e.fit_obb(&[], rotated_axes(&mut r)) == Obb::EMPTY
+            },
+        },
+        Check {
+            exercise: 29,
+            name: "OBB fit: tight along the given axes (not the AABB, not around the mean)",
+            points: 5,
+            run: |e| {
+                let mut r = Rng(2930);
+                obb_cases(&mut r).iter().all(|(pts, axes)| {
+                    let b = e.fit_obb(pts, *axes);
+                    let want = exact_half_extents(pts, axes);
+                    // What rounding may add far from the origin: the centre
+                    // rounded to f32, and f32 axes that are orthonormal only
+                    // to about 1e-7, over a centre 1e6 away.
+                    let moved = b.center.abs().max_element() as f64 * 2f64.powi(-20);
+                    (0..3).all(|k| {
+                        let h = b.half_extents[k] as f64;
+                        h <= want[k] * (1.0 + 1e-5) + moved + 1e-30 && h >= want[k] * (1.0 - 1e-5)
+                    })
+                })
+            },
+        },
+    ]
+}
+
+/// Orthonormal axes turned by a random rotation.
+fn rotated_axes(r: &mut Rng) -> [Vec3; 3] {
+    let q = bvhkit::glam::Quat::from_euler(
+        bvhkit::glam::EulerRot::XYZ,
+        r.next() * 6.0,
+        r.next() * 6.0,
+        r.next() * 6.0,
+    );
+    [q * Vec3::X, q * Vec3::Y, q * Vec3::Z]
+}
+
+/// Point sets for exercise 29 with axes to fit them in: one point, a
+/// stick along an axis, clouds near the origin and a million units away
+/// (where f32 rounding of the centre decides containment), squashed along
+/// one axis.
+fn obb_cases(r: &mut Rng) -> Vec<(Vec<Vec3>, [Vec3; 3])> {
+    let mut out = Vec::new();
+    let axes = rotated_axes(r);
+    out.push((vec![Vec3::new(3.0, -2.0, 7.5)], axes));
+    out.push((
+        (0..5)
+            .map(|i| axes[0] * i as f32 + Vec3::splat(1e3))
+            .collect(),
+        axes,
+    ));
+    for k in 0..60 {
+        let axes = rotated_axes(r);
+        let offset = if k % 2 == 0 { 0.0 } else { 1e6 };
+        let base = r.point(offset, Vec3::ZERO);
+        let squash = Vec3::new(1.0, 0.3, 0.01 + r.next());
+        let n = 1 + (r.next() * 40.0) as usize;
+        let pts = (0..n)
+            .map(|_| {
+                let p = r.point(5.0, Vec3::ZERO) * squash;
+                base + axes[0] * p.x + axes[1] * p.y + axes[2] * p.z
+            })
+            .collect();
+        out.push((pts, axes));
+    }
+    out
+}
+
+/// Whether every point is inside `b`, tested in f64 on its f32 values.
+fn obb_contains(b: &Obb, pts: &[Vec3]) -> bool {
+    pts.iter().all(|p| {
+        let v = p.as_dvec3() - b.center.as_dvec3();
+        (0..3).all(|k| b.axes[k].as_dvec3().dot(v).abs() <= b.half_extents[k] as f64)
+    })
+}
+
+/// Half the projection range of the points on each axis, in f64.
+fn exact_half_extents(pts: &[Vec3], axes: &[Vec3; 3]) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for (k, a) in axes.iter().enumerate() {
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                let t = a.as_dvec3().dot(p.as_dvec3());
+                (l.min(t), h.max(t))
+            });
+        out[k] = (hi - lo) / 2.0;
+    }
+    out
+}
+
+/// Plausible wrong answers, numbered from 1; each loses points here.
+#[cfg(test)]
+pub mod wrong {
+    use super::*;
+
+    /// How many wrong answers this exercise keeps.
+    pub const COUNT: u32 = 3;
+
+    pub fn fit_obb(which: u32, points: &[Vec3], axes: [Vec3; 3]) -> Obb {
+        if points.is_empty() {
+            return Obb::EMPTY;
+        }
+        let ax = axes.map(|a| a.as_dvec3());
+        let proj = |p: &Vec3| {
+            let p = p.as_dvec3();
+            bvhkit::glam::DVec3::new(ax[0].dot(p), ax[1].dot(p), ax[2].dot(p))
+        };
+        let (lo, hi) = points.iter().fold(
+            (
+                bvhkit::glam::DVec3::INFINITY,
+                bvhkit::glam::DVec3::NEG_INFINITY,
+            ),
+            |(l, h), p| (l.min(proj(p)), h.max(proj(p))),
+        );
+        let mid = (lo + hi) * 0.5;
+        let from_mid = |m: bvhkit::glam::DVec3| (ax[0] * m.x + ax[1] * m.y + ax[2] * m.z).as_vec3();
+        match which {
+            // Half the range, rounded to nearest: the rounded centre
+            // leaves far points just outside.
+            1 => Obb {
+                center: from_mid(mid),
+                axes,
+                half_extents: ((hi - lo) * 0.5).as_vec3(),
+            },
+            // The points' AABB: right when the axes are x, y, z, loose
+            // otherwise.
+            2 => {
+                let mut b = Aabb::EMPTY;
+                for p in points {
+                    b.grow(*p);
+                }
+                let h = (b.max - b.min) * 0.5;
+                let r = h.x.abs() + h.y.abs() + h.z.abs();
+                Obb {
+                    center: b.center(),
+                    axes,
+                    half_extents: Vec3::splat(r),
+                }
+            }
+            // Centred on the mean of the points, not the middle of the
+            // range: contains them only with extents past the tight ones.
+            3 => {
+                let mean = points
+                    .iter()
+                    .map(|p| p.as_dvec3())
+                    .sum::<bvhkit::glam::DVec3>()
+                    / points.len() as f64;
+                let c = mean.as_vec3();
+                let mut h = bvhkit::glam::DVec3::ZERO;
+                for p in points {
+                    let v = p.as_dvec3() - c.as_dvec3();
+                    h = h.max(bvhkit::glam::DVec3::new(
+                        ax[0].dot(v).abs(),
+                        ax[1].dot(v).abs(),
+                        ax[2].dot(v).abs(),
+                    ));
+                }
+                Obb {
+                    center: c,
+                    axes,
+                    half_extents: h.as_vec3() * 1.0001,
+                }
+            }
+            _ => Reference.fit_obb(points, axes),
+        }
+    }
+}

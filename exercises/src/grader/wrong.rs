@@ -1,0 +1,248 @@
+//! The plausible wrong answers of every exercise, as one [`Exercises`]
+//! implementation: [`Wrong`] answers exercise `exercise` with its wrong
+//! answer number `k` (kept in that exercise's file, module `wrong`) and
+//! every other exercise with the reference.
+
+use super::common::*;
+use super::ex01_aabb_overlap;
+use super::ex02_fit_and_merge;
+use super::ex03_object_median;
+use super::ex04_larger_volume;
+use super::ex05_recursive_pairs;
+use super::ex06_stack_pairs;
+use super::ex07_cost_function;
+use super::ex08_bottom_up;
+use super::ex09_refit;
+use super::ex10_insertion_cost;
+use super::ex11_implicit_array;
+use super::ex12_preorder;
+use super::ex13_quantize;
+use super::ex14_static_sizing;
+use super::ex15_workload_pareto;
+use super::ex16_sah_bins;
+use super::ex17_kdop;
+use super::ex18_descent_rules;
+use super::ex19_partition_criteria;
+use super::ex20_bfs_dfs;
+use super::ex21_obb_overlap;
+use super::ex22_best_first_nearest;
+use super::ex23_leaf_order;
+use super::ex24_stop_and_fall_back;
+use super::ex25_fit_unit_costs;
+use super::ex26_axis_and_split;
+use super::ex27_tree_measures;
+use super::ex28_tri_nodes;
+use super::ex29_fit_obb;
+use super::ex30_preorder_offsets;
+use super::ex31_collision_system;
+
+/// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
+pub struct Wrong {
+    pub exercise: u32,
+    pub k: u32,
+}
+
+/// Exercise 8's wrong answer that never returns.
+pub const LOOPS: u32 = 1000;
+/// Exercise 11's wrong answer whose `implicit_len` panics.
+pub const PANICS: u32 = 1001;
+
+/// How many wrong answers each exercise keeps, by exercise number.
+pub fn counts() -> Vec<(u32, u32)> {
+    vec![
+        (1, ex01_aabb_overlap::wrong::COUNT),
+        (2, ex02_fit_and_merge::wrong::COUNT),
+        (3, ex03_object_median::wrong::COUNT),
+        (4, ex04_larger_volume::wrong::COUNT),
+        (5, ex05_recursive_pairs::wrong::COUNT),
+        (6, ex06_stack_pairs::wrong::COUNT),
+        (7, ex07_cost_function::wrong::COUNT),
+        (8, ex08_bottom_up::wrong::COUNT),
+        (9, ex09_refit::wrong::COUNT),
+        (10, ex10_insertion_cost::wrong::COUNT),
+        (11, ex11_implicit_array::wrong::COUNT),
+        (12, ex12_preorder::wrong::COUNT),
+        (13, ex13_quantize::wrong::COUNT),
+        (14, ex14_static_sizing::wrong::COUNT),
+        (15, ex15_workload_pareto::wrong::COUNT),
+        (16, ex16_sah_bins::wrong::COUNT),
+        (17, ex17_kdop::wrong::COUNT),
+        (18, ex18_descent_rules::wrong::COUNT),
+        (19, ex19_partition_criteria::wrong::COUNT),
+        (20, ex20_bfs_dfs::wrong::COUNT),
+        (21, ex21_obb_overlap::wrong::COUNT),
+        (22, ex22_best_first_nearest::wrong::COUNT),
+        (23, ex23_leaf_order::wrong::COUNT),
+        (24, ex24_stop_and_fall_back::wrong::COUNT),
+        (25, ex25_fit_unit_costs::wrong::COUNT),
+        (26, ex26_axis_and_split::wrong::COUNT),
+        (27, ex27_tree_measures::wrong::COUNT),
+        (28, ex28_tri_nodes::wrong::COUNT),
+        (29, ex29_fit_obb::wrong::COUNT),
+        (30, ex30_preorder_offsets::wrong::COUNT),
+        (31, ex31_collision_system::wrong::COUNT),
+    ]
+}
+
+impl Wrong {
+    /// The wrong answer to use for `exercise`'s methods: 0 (the reference) unless it is ours.
+    fn k(&self, exercise: u32) -> u32 {
+        if self.exercise == exercise {
+            self.k
+        } else {
+            0
+        }
+    }
+}
+
+impl Exercises for Wrong {
+    fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
+        ex01_aabb_overlap::wrong::aabb_overlaps(self.k(1), a, b)
+    }
+    fn aabb_fit(&self, points: &[Vec3]) -> Aabb {
+        ex02_fit_and_merge::wrong::aabb_fit(self.k(2), points)
+    }
+    fn aabb_merge(&self, a: &Aabb, b: &Aabb) -> Aabb {
+        ex02_fit_and_merge::wrong::aabb_merge(self.k(2), a, b)
+    }
+    fn sphere_fit(&self, points: &[Vec3]) -> Sphere {
+        ex02_fit_and_merge::wrong::sphere_fit(self.k(2), points)
+    }
+    fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere {
+        ex02_fit_and_merge::wrong::sphere_merge(self.k(2), a, b)
+    }
+    fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
+        ex03_object_median::wrong::median_partition(self.k(3), centroids, indices)
+    }
+    fn descend_a(&self, a: &Node<Aabb>, b: &Node<Aabb>) -> bool {
+        ex04_larger_volume::wrong::descend_a(self.k(4), a, b)
+    }
+    fn informed_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        pa: &[Aabb],
+        b: &Bvh<Aabb>,
+        pb: &[Aabb],
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        ex05_recursive_pairs::wrong::informed_dfs(self.k(5), a, pa, b, pb, out)
+    }
+    fn stack_dfs(
+        &self,
+        a: &Bvh<Aabb>,
+        pa: &[Aabb],
+        b: &Bvh<Aabb>,
+        pb: &[Aabb],
+        stack: &mut [(u32, u32)],
+        out: &mut Vec<(u32, u32)>,
+    ) -> bool {
+        ex06_stack_pairs::wrong::stack_dfs(self.k(6), a, pa, b, pb, stack, out)
+    }
+    fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
+        ex07_cost_function::wrong::predicted_cost(self.k(7), counts, model)
+    }
+    fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)> {
+        ex08_bottom_up::wrong::bottom_up_merges(self.k(8), boxes)
+    }
+    fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]) {
+        ex09_refit::wrong::refit(self.k(9), nodes, indices, prims)
+    }
+    fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64 {
+        ex10_insertion_cost::wrong::insertion_cost(self.k(10), sibling, ancestors, new)
+    }
+    fn implicit_children(&self, i: usize) -> (usize, usize) {
+        ex11_implicit_array::wrong::implicit_children(self.k(11), i)
+    }
+    fn implicit_parent(&self, i: usize) -> Option<usize> {
+        ex11_implicit_array::wrong::implicit_parent(self.k(11), i)
+    }
+    fn implicit_len(&self, depth: u32) -> usize {
+        ex11_implicit_array::wrong::implicit_len(self.k(11), depth)
+    }
+    fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
+        ex12_preorder::wrong::to_preorder(self.k(12), tree)
+    }
+    fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
+        ex13_quantize::wrong::quantize(self.k(13), parent, child)
+    }
+    fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize {
+        ex14_static_sizing::wrong::top_down_bytes(self.k(14), n, node_bytes)
+    }
+    fn pair_stack_bound(&self, depth_a: usize, depth_b: usize) -> usize {
+        ex14_static_sizing::wrong::pair_stack_bound(self.k(14), depth_a, depth_b)
+    }
+    fn workload_ms(&self, build: f64, query: f64, rebuild: bool, frames: usize) -> f64 {
+        ex15_workload_pareto::wrong::workload_ms(self.k(15), build, query, rebuild, frames)
+    }
+    fn pareto_front(&self, points: &[(f64, f64)]) -> Vec<usize> {
+        ex15_workload_pareto::wrong::pareto_front(self.k(15), points)
+    }
+    fn sah_best_boundary(&self, bins: &[(Aabb, u32)]) -> Option<usize> {
+        ex16_sah_bins::wrong::sah_best_boundary(self.k(16), bins)
+    }
+    fn dop14_fit(&self, points: &[Vec3]) -> Dop14 {
+        ex17_kdop::wrong::dop14_fit(self.k(17), points)
+    }
+    fn dop14_overlaps(&self, a: &Dop14, b: &Dop14) -> bool {
+        ex17_kdop::wrong::dop14_overlaps(self.k(17), a, b)
+    }
+    fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open {
+        ex18_descent_rules::wrong::descent_open(self.k(18), rule, d)
+    }
+    fn partition_cost(&self, c: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64 {
+        ex19_partition_criteria::wrong::partition_cost(self.k(19), c, l, nl, r, nr)
+    }
+    fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
+        ex20_bfs_dfs::wrong::visit_order(self.k(20), tree, breadth_first)
+    }
+    fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool {
+        ex21_obb_overlap::wrong::obb_overlaps(self.k(21), a, b)
+    }
+    fn best_first_nearest(
+        &self,
+        tree: &Bvh<Aabb>,
+        prims: &[Aabb],
+        p: Vec3,
+    ) -> Option<(u32, f32, usize)> {
+        ex22_best_first_nearest::wrong::best_first_nearest(self.k(22), tree, prims, p)
+    }
+    fn leaf_order_bounds(&self, tree: &Bvh<Aabb>, prims: &[Triangle]) -> Vec<Aabb> {
+        ex23_leaf_order::wrong::leaf_order_bounds(self.k(23), tree, prims)
+    }
+    fn leaf_pair_candidates(&self, a: (&[u32], &[Aabb]), b: (&[u32], &[Aabb])) -> Vec<(u32, u32)> {
+        ex23_leaf_order::wrong::leaf_pair_candidates(self.k(23), a, b)
+    }
+    fn node_step(&self, n: u32, depth: u32, stop: &Stop, left: u32, w: bool) -> NodeStep {
+        ex24_stop_and_fall_back::wrong::node_step(self.k(24), n, depth, stop, left, w)
+    }
+    fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64) {
+        ex25_fit_unit_costs::wrong::fit_unit_costs(self.k(25), samples)
+    }
+    fn split_plane(
+        &self,
+        centroids: &[Vec3],
+        axis: crate::AxisRule,
+        point: crate::PointRule,
+    ) -> Option<(usize, f32)> {
+        ex26_axis_and_split::wrong::split_plane(self.k(26), centroids, axis, point)
+    }
+    fn tree_measures(&self, tree: &Bvh<Aabb>) -> crate::TreeMeasures {
+        ex27_tree_measures::wrong::tree_measures(self.k(27), tree)
+    }
+    fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize) {
+        ex28_tri_nodes::wrong::tri_node_records(self.k(28), tree)
+    }
+    fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb {
+        ex29_fit_obb::wrong::fit_obb(self.k(29), points, axes)
+    }
+    fn preorder_offsets(&self, tree: &Bvh<Aabb>) -> (usize, usize) {
+        ex30_preorder_offsets::wrong::preorder_offsets(self.k(30), tree)
+    }
+    fn collide_objects(
+        &self,
+        boxes: &[Aabb],
+        narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
+    ) -> Vec<((u32, u32), (u32, u32))> {
+        ex31_collision_system::wrong::collide_objects(self.k(31), boxes, narrow)
+    }
+}
