@@ -1,6 +1,14 @@
 //! The book's chapters as doctests: `cargo test -p bvhkit-book` compiles and
 //! runs every Rust block, and a failure names `book/src/<chapter>.md (line N)`.
 //! Prose-only blocks are fenced as `text` or `console`.
+//!
+//! A snippet that prints shows its output in the chapter: its `println!`
+//! calls are captured by two hidden lines into an [`Output`], which checks
+//! them against `book/src/output/NAME.txt`, the file the chapter includes in
+//! a `text` block right after the snippet. Regenerate every output file with
+//! `BVHKIT_BLESS=1 cargo test -p bvhkit-book --doc`, then read `git diff`.
+
+use std::fmt::Write as _;
 
 macro_rules! chapters {
     ($($name:ident => $file:literal),* $(,)?) => {
@@ -32,8 +40,171 @@ chapters! {
     exercises => "exercises.md",
 }
 
+/// What a book snippet prints, checked against the output its chapter shows.
+///
+/// In a snippet (the `#` lines are hidden in the book, so a reader sees and
+/// copies plain `println!`):
+///
+/// ```text
+/// # let mut out = bvhkit_book::Output::new("chapter-1");
+/// # macro_rules! println { () => { out.line(String::new()) }; ($($t:tt)*) => { out.line(format!($($t)*)) } }
+/// println!("{} triangles", 20);
+/// # out.check();
+/// ```
+pub struct Output {
+    name: &'static str,
+    text: String,
+}
+
+impl Output {
+    /// Captures the output shown in `book/src/output/{name}.txt`.
+    pub fn new(name: &'static str) -> Output {
+        Output {
+            name,
+            text: String::new(),
+        }
+    }
+
+    /// One printed line.
+    pub fn line(&mut self, line: String) {
+        let _ = writeln!(self.text, "{line}");
+    }
+
+    /// Prints the output, then checks that it is the file the chapter shows,
+    /// digit for digit (or, with `BVHKIT_BLESS` set, writes that file).
+    pub fn check(self) {
+        self.compare(|s| s.to_string(), "digit for digit");
+    }
+
+    /// [`check`](Self::check) for output with timings in it: the text must
+    /// match the file with every number masked (the file keeps the numbers
+    /// of the run that wrote it; the chapter says it is a recorded run).
+    pub fn check_shape(self) {
+        self.compare(mask_numbers, "with numbers masked");
+    }
+
+    fn compare(self, view: impl Fn(&str) -> String, how: &str) {
+        print!("{}", self.text);
+        let path = output_path(self.name);
+        if std::env::var_os("BVHKIT_BLESS").is_some() {
+            std::fs::write(&path, &self.text).unwrap_or_else(|e| panic!("{path}: {e}"));
+            return;
+        }
+        let shown = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+            panic!("{path}: {e} (write it with BVHKIT_BLESS=1 cargo test -p bvhkit-book --doc)")
+        });
+        if view(&shown) != view(&self.text) {
+            panic!(
+                "the book shows an output ({path}) that this snippet no longer prints \
+                 ({how}).\n--- shown:\n{shown}--- printed now:\n{}\nIf the new output is \
+                 right, regenerate it with BVHKIT_BLESS=1 cargo test -p bvhkit-book --doc and \
+                 review the diff.",
+                self.text
+            );
+        }
+    }
+}
+
+/// Where the output named `name` is kept.
+fn output_path(name: &str) -> String {
+    format!("{}/src/output/{name}.txt", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `text` with every number (digits, a decimal point, an exponent) replaced
+/// by `#` and runs of spaces by one (numbers of other widths move the
+/// columns): what stays when timings change from run to run.
+pub fn mask_numbers(text: &str) -> String {
+    let mut out = String::new();
+    let mut in_number = false;
+    let mut chars = text.chars().peekable();
+    let mut after_e = false;
+    while let Some(c) = chars.next() {
+        let next_digit = chars.peek().is_some_and(|d| d.is_ascii_digit());
+        let next_sign = chars.peek().is_some_and(|d| *d == '-' || *d == '+');
+        let continues = in_number
+            && ((matches!(c, '.' | ',') && next_digit)
+                || (c == 'e' && (next_digit || next_sign))
+                || (after_e && matches!(c, '-' | '+') && next_digit));
+        after_e = in_number && c == 'e';
+        if c.is_ascii_digit() || continues {
+            if !in_number {
+                out.push('#');
+            }
+            in_number = true;
+        } else {
+            in_number = false;
+            if !(c == ' ' && out.ends_with(' ')) {
+                out.push(c);
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn masking_keeps_the_words_and_drops_the_numbers() {
+        assert_eq!(
+            super::mask_numbers("  sah:   0.12 ms, SAH 23.25, 1e-3 x2\n"),
+            " sah: # ms, SAH #, # x#\n"
+        );
+        assert_eq!(
+            super::mask_numbers("a 121.02 ms"),
+            super::mask_numbers("a   86.1 ms")
+        );
+    }
+
+    /// Every snippet that prints captures its output, and the chapter shows
+    /// that output in a `text` block right after it; every output file is
+    /// shown once. (The snippets check the files' contents when they run.)
+    #[test]
+    fn every_printing_snippet_shows_its_output() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
+        let mut shown = Vec::new();
+        for file in super::CHAPTERS {
+            let text = std::fs::read_to_string(format!("{dir}/{file}")).unwrap();
+            let blocks: Vec<&str> = text.split("```").collect();
+            // Odd pieces are fenced blocks: "rust\n...", "text\n...".
+            for (k, block) in blocks.iter().enumerate().skip(1).step_by(2) {
+                if !block.starts_with("rust") || !block.contains("println!") {
+                    continue;
+                }
+                let at = format!(
+                    "{file}, the snippet starting `{}`",
+                    block.lines().nth(1).unwrap_or("")
+                );
+                let name = block
+                    .split("bvhkit_book::Output::new(\"")
+                    .nth(1)
+                    .and_then(|s| s.split('"').next())
+                    .unwrap_or_else(|| panic!("{at} prints without capturing its output"));
+                assert!(
+                    block.contains("# out.check();") || block.contains("# out.check_shape();"),
+                    "{at} never checks its output"
+                );
+                let next = blocks.get(k + 2).copied().unwrap_or("");
+                assert_eq!(
+                    next,
+                    format!("text\n{{{{#include output/{name}.txt}}}}\n"),
+                    "{at} is not followed by its output"
+                );
+                assert!(
+                    blocks[k + 1].trim().is_empty(),
+                    "{at}: text between it and its output"
+                );
+                shown.push(format!("{name}.txt"));
+            }
+        }
+        let mut files: Vec<String> = std::fs::read_dir(format!("{dir}/output"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        files.sort();
+        shown.sort();
+        assert_eq!(files, shown, "output files and the snippets that show them");
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {
