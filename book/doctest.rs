@@ -51,6 +51,7 @@ chapters! {
 /// println!("{} triangles", 20);
 /// # out.check();
 /// ```
+#[derive(Debug)]
 pub struct Output {
     name: &'static str,
     text: String,
