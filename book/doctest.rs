@@ -107,8 +107,11 @@ impl Output {
 }
 
 /// Where the output named `name` is kept.
+/// (`NAME.txt`, shown in a `text` block; a name with an extension, such as
+/// `NAME.md` for a table, is the file name and is included as it is.)
 fn output_path(name: &str) -> String {
-    format!("{}/src/output/{name}.txt", env!("CARGO_MANIFEST_DIR"))
+    let ext = if name.contains('.') { "" } else { ".txt" };
+    format!("{}/src/output/{name}{ext}", env!("CARGO_MANIFEST_DIR"))
 }
 
 /// `text` with every number (digits, a decimal point, an exponent) replaced
@@ -184,6 +187,15 @@ mod tests {
                     block.contains("# out.check();") || block.contains("# out.check_shape();"),
                     "{at} never checks its output"
                 );
+                if name.ends_with(".md") {
+                    // A table: included as markdown right after the snippet.
+                    assert!(
+                        blocks[k + 1].starts_with(&format!("\n\n{{{{#include output/{name}}}}}\n")),
+                        "{at} is not followed by its table"
+                    );
+                    shown.push(name.to_string());
+                    continue;
+                }
                 let next = blocks.get(k + 2).copied().unwrap_or("");
                 assert_eq!(
                     next,
