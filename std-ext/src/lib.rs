@@ -16,6 +16,7 @@ pub mod motion;
 pub mod near_misses;
 pub mod report;
 pub mod scene;
+pub mod stamp;
 pub mod stats;
 pub mod tour;
 

@@ -58,6 +58,9 @@ pub struct BuilderRow {
 pub struct Report {
     /// Scene description.
     pub scene: String,
+    /// When and on what machine it ran, and how many runs each median took
+    /// (see [`stamp::now`](crate::stamp::now)).
+    pub recorded: String,
     /// Volume fits.
     pub fits: Vec<FitRow>,
     /// Builders.
@@ -283,6 +286,7 @@ pub fn run_with_meshes(
     })?;
     Ok(Report {
         scene: format!("two rocks of {n} triangles ({subdivisions} subdivisions)"),
+        recorded: format!("{} · medians of {runs} runs", crate::stamp::now()),
         fits,
         builders,
         layouts,
@@ -460,25 +464,31 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
     .map_err(err)?;
 
     let mut md = format!(
-        "# bvhkit bench: run time against error\n\nScene: {}.\n\n",
-        r.scene
+        "# bvhkit bench: run time against error\n\nScene: {}.\n\n<!-- ANCHOR: recorded -->\nRecorded {}.\n<!-- ANCHOR_END: recorded -->\n\n",
+        r.scene, r.recorded
     );
     md += &headlines(r);
-    md += "## Fitting a volume\n\nOne volume around all vertices of each mesh; looseness is the volume over the smallest volume any method found on that mesh. A k-DOP is charged the volume of its enclosing box, an upper bound on its true volume.\n\n![fits](fits.svg)\n\n| mesh | method | ms | volume / tightest |\n|---|---|---:|---:|\n";
+    md += "## Fitting a volume\n\nOne volume around all vertices of each mesh; looseness is the volume over the smallest volume any method found on that mesh. A k-DOP is charged the volume of its enclosing box, an upper bound on its true volume.\n\n![fits](fits.svg)\n\n";
+    let mut table =
+        String::from("| mesh | method | ms | volume / tightest |\n|---|---|---:|---:|\n");
     for f in &r.fits {
-        md += &format!(
+        table += &format!(
             "| {} | {} | {:.3} | {:.3} |\n",
             f.mesh, f.method, f.ms, f.volume_ratio
         );
     }
-    md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\nThe plot shows the generated rocks; real meshes given with `--mesh` have their own rows (each against a copy of itself shifted by a twentieth of its size), with the Pareto front marked per scene.\n\n| scene | builder | build ms | SAH | query ms | verified |\n|---|---|---:|---:|---:|---|\n";
+    md += &anchored("fits", &table);
+    md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\nThe plot shows the generated rocks; real meshes given with `--mesh` have their own rows (each against a copy of itself shifted by a twentieth of its size), with the Pareto front marked per scene.\n\n";
+    let mut table = String::from(
+        "| scene | builder | build ms | SAH | query ms | verified |\n|---|---|---:|---:|---:|---|\n",
+    );
     for b in &r.builders {
         let name = if b.pareto {
             format!("**{}**", b.builder)
         } else {
             b.builder.clone()
         };
-        md += &format!(
+        table += &format!(
             "| {} | {name} | {:.2} | {:.2} | {:.3} | {} |\n",
             b.scene,
             b.build_ms,
@@ -487,15 +497,16 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
             if b.verified { "yes" } else { "NO" }
         );
     }
+    md += &anchored("builders", &table);
     md += "\n## Representations\n\nMemory against the extra volume tests of looser or wider nodes.\n\n![layouts](layouts.svg)\n\n";
-    md += &layouts::render(&r.layouts);
+    md += &anchored("layouts", &layouts::render(&r.layouts));
     md += &format!(
         "\n## Narrow phase: exact against f64 against f32\n\nThe same triangle–triangle test (Guigue–Devillers) reading its orientation signs from exact predicates, from the determinants in `f64`, or in `f32`. Adversarial pairs touch or miss by about one rounding error ({}), up to 1000 units from the origin; random pairs are clear-cut.\n\n![narrow](narrow.svg)\n\n",
         near_misses::KINDS.join(", ")
     );
-    md += &near_misses::render(&r.narrow);
+    md += &anchored("narrow", &near_misses::render(&r.narrow));
     md += "\n## The advisor against the best\n\nFor each scene and workload (60 frames; pairs are exact triangle pairs, rays a batch of 2 000 closest hits), every combination of builder, volume, representation and walk was measured and checked against brute force. The advised combination's total time is compared with the fastest; the default (SAH, boxes, canonical nodes, default walk) is shown for scale.\n\n";
-    md += &advisor::render(&r.advisor);
+    md += &anchored("advisor", &advisor::render(&r.advisor));
     let md_path = dir.join("report.md");
     std::fs::write(&md_path, md).map_err(|e| format!("{}: {e}", md_path.display()))?;
     let json_path = dir.join("report.json");
@@ -509,6 +520,13 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
         layouts_svg,
         narrow_svg,
     ])
+}
+
+/// `body` between mdbook anchor comments, so that a chapter can include
+/// this one part of a recorded report (`{{#include report.md:NAME}}`); the
+/// comments are invisible in the rendered page.
+fn anchored(name: &str, body: &str) -> String {
+    format!("<!-- ANCHOR: {name} -->\n{body}<!-- ANCHOR_END: {name} -->\n")
 }
 
 #[cfg(test)]
@@ -580,6 +598,18 @@ mod tests {
         }
         let md = std::fs::read_to_string(&files[0]).unwrap();
         assert!(md.contains("## Builders") && md.contains("**"));
+        // Each part a chapter includes is anchored once, and the run is stamped.
+        for part in [
+            "recorded", "fits", "builders", "layouts", "narrow", "advisor",
+        ] {
+            let (open, close) = (
+                format!("ANCHOR: {part} -->"),
+                format!("ANCHOR_END: {part} -->"),
+            );
+            assert_eq!(md.matches(&open).count(), 1, "{part}");
+            assert!(md.find(&open) < md.find(&close), "{part}");
+        }
+        assert!(md.contains(" UTC · ") && md.contains(" cores · medians of "));
         assert!(md.contains("## Narrow phase") && files.iter().any(|f| f.ends_with("narrow.svg")));
         assert!(md.contains("## The advisor against the best"));
         assert!(md.contains("## Headlines"));
