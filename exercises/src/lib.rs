@@ -110,7 +110,8 @@ pub trait Exercises {
     /// preorder (a node, then its whole first subtree, then its second): the
     /// node's box, and for an internal node the position *in your output* of
     /// its second (right) child; `None` for a leaf. The first child is always
-    /// the next entry.
+    /// the next entry. A tree built from no primitives has no entries; a tree
+    /// can be up to [`bvhkit::MAX_DEPTH`] (64) levels deep.
     fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)>;
 
     /// Exercise 13: quantize `child` (inside `parent`) to 8-bit grid
@@ -190,7 +191,8 @@ pub trait Exercises {
     /// Exercise 20: the order in which a traversal from the root visits the
     /// nodes of `tree`, as node indices: depth-first is preorder, the left
     /// child's subtree before the right's; breadth-first is level by level,
-    /// left to right. The empty tree has no nodes.
+    /// left to right. The empty tree has no nodes; a tree can be up to
+    /// [`bvhkit::MAX_DEPTH`] (64) levels deep.
     fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32>;
 
     /// Exercise 21: do two oriented boxes overlap? The separating-axis test:

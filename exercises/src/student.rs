@@ -145,7 +145,8 @@ impl Exercises for Student {
     /// first so the left one is emitted next). The right child's output
     /// position is known only once the whole left subtree is out: remember
     /// which entry to patch. `tree.nodes()[i].children()` gives the children;
-    /// `tree.root()` is `None` for a tree built from no primitives.
+    /// `tree.root()` is `None` for a tree built from no primitives. Trees can
+    /// be `bvhkit::MAX_DEPTH` (64) levels deep: size a fixed stack for that.
     fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
         let _ = tree;
         todo!("exercise 12")
@@ -238,7 +239,7 @@ impl Exercises for Student {
     fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
         // Hint: `tree.nodes()` and `Node::children()`; a queue (VecDeque)
         // for breadth-first, a stack for depth-first (which child goes on
-        // the stack first?).
+        // the stack first?). Trees can be 64 levels deep.
         let _ = (tree, breadth_first);
         todo!("exercise 20")
     }
