@@ -118,12 +118,15 @@ pub trait Exercises {
     /// coordinates `(lo, hi)` per axis, conservatively: with
     /// [`dequantize`]`(parent, k, q)` as the decoder, `dequantize(lo[k]) <=
     /// child.min[k]` and `dequantize(hi[k]) >= child.max[k]`, and as tight as
-    /// possible (the largest such `lo`, the smallest such `hi`).
+    /// possible (the largest such `lo`, the smallest such `hi`). On an axis
+    /// where the parent is flat (`min == max`) every grid line decodes to the
+    /// same value, so that axis gets `lo = 255` and `hi = 0`.
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]);
 
     /// Exercise 14a: bytes of `static` storage a top-down build over `n`
     /// primitives needs: the most nodes a binary tree over `n` primitives can
-    /// have, `node_bytes` each, plus one `u32` index per primitive.
+    /// have, `node_bytes` each, plus one `u32` index per primitive (no
+    /// primitives: no tree, 0 bytes).
     fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize;
     /// Exercise 14b: the most node pairs that can wait on the explicit stack
     /// of a two-tree traversal of two binary trees `depth_a` and `depth_b`

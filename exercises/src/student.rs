@@ -155,6 +155,8 @@ impl Exercises for Student {
     /// Hint: estimate with `floor` / `ceil` of `(x - min) / step`, then check
     /// the estimate with `dequantize` itself and step it down (for `lo`) or up
     /// (for `hi`) while it is on the wrong side: rounding can put it there.
+    /// A grid line exactly on the child's face is fine (`<=` and `>=`). A flat
+    /// parent axis has step 0: do not divide by it (the answer is 255, 0).
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
         let _ = (parent, child);
         todo!("exercise 13")
