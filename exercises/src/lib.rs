@@ -137,7 +137,9 @@ pub trait Exercises {
     /// Exercise 15a: the total time of a workload run for `frames` frames
     /// with a tree that takes `build_ms` to build and `query_ms` per query:
     /// built once when `rebuild_every_frame` is false, built every frame
-    /// when it is true; one query per frame either way.
+    /// when it is true; one query per frame either way. With 0 frames a tree
+    /// built once is still built (`build_ms`); one rebuilt every frame costs
+    /// nothing. Computed in `f64`.
     fn workload_ms(
         &self,
         build_ms: f64,
@@ -181,14 +183,15 @@ pub trait Exercises {
     fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open;
 
     /// Exercise 19: the partition criteria of a top-down split, as a cost to
-    /// minimise, in `f64`, for children boxes `l` and `r` holding `nl` and `nr`
-    /// primitives: `Balance` is `|nl - nr|`; `SurfaceArea` is
+    /// minimise, in `f64` (areas and volumes from the extents `max - min`
+    /// widened to `f64`, the counts too), for children boxes `l` and `r`
+    /// holding `nl` and `nr` primitives: `Balance` is `|nl - nr|`; `SurfaceArea` is
     /// `nl * A(l) + nr * A(r)` (full surface areas); `Volume` is
     /// `V(l) + V(r)`; `LargerChild` is `max(V(l), V(r))`; `Overlap` is the
     /// volume of `l ∩ r` (0 when they do not overlap); `Separation` is minus
     /// the gap between the boxes, the gap being the largest distance between
-    /// them along any axis (negative when they overlap on every axis). Never
-    /// called with `Weighted`.
+    /// them along any axis (negative when they overlap on every axis, 0 when
+    /// they touch). Never called with `Weighted`.
     fn partition_cost(&self, criterion: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64;
 
     /// Exercise 20: the order in which a traversal from the root visits the

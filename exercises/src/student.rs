@@ -183,7 +183,8 @@ impl Exercises for Student {
         rebuild_every_frame: bool,
         frames: usize,
     ) -> f64 {
-        // Hint: how many builds and how many queries does each case run?
+        // Hint: how many builds and how many queries does each case run
+        // (with 0 frames too)? Keep everything in f64.
         let _ = (build_ms, query_ms, rebuild_every_frame, frames);
         todo!("exercise 15a")
     }
@@ -233,7 +234,8 @@ impl Exercises for Student {
         // Hint: `match criterion`. The intersection of two boxes has extents
         // `min(maxes) - max(mins)`: clamp negative ones to 0 before
         // multiplying (two negative extents make a positive product). The gap
-        // along an axis is `max(l.min - r.max, r.min - l.max)`.
+        // along an axis is `max(l.min - r.max, r.min - l.max)`. Widen to f64
+        // before multiplying: a count of 2^24 + 1 is not an f32.
         let _ = (criterion, l, nl, r, nr);
         todo!("exercise 19")
     }

@@ -297,6 +297,11 @@ pub(crate) fn same_list<T: PartialEq>(
     fail(why)
 }
 
+/// [`close`], explained on failure as "CALL returned GOT, expected WANT".
+pub(crate) fn near(call: impl std::fmt::Display, want: f64, got: f64) -> bool {
+    close(got, want) || fail(format!("{call} returned {got}, expected {want}"))
+}
+
 /// A tree `depth` levels deep whose left children are internal down to the
 /// last level and whose right children are leaves (one primitive each): a
 /// depth-first walk with a stack keeps one right child waiting per level.
