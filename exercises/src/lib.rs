@@ -178,8 +178,11 @@ pub trait Exercises {
     /// both; `Alternate` opens A at even `d.depth` and B at odd; `Overlap`
     /// opens the side whose children lie, on average, least inside the other
     /// node, "inside" being the fraction of a child box's volume within the
-    /// other node's box (children are given; A on a tie). Never called with
-    /// `Larger` (that is exercise 4).
+    /// other node's box: the product over the axes of the shared extent over
+    /// the child's own, each factor clamped to `[0, 1]`. The children are
+    /// given (two, or up to four for a wide node: average over however many
+    /// there are), each of positive extent on every axis; A on a tie. Never
+    /// called with `Larger` (that is exercise 4).
     fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open;
 
     /// Exercise 19: the partition criteria of a top-down split, as a cost to

@@ -225,7 +225,8 @@ impl Exercises for Student {
         // the part of child `c` inside box `o` is the product over the axes
         // of (shared extent) / (c's extent), each factor clamped to [0, 1];
         // average it over `d.a_children.unwrap()` against `d.b`, and over
-        // B's children against `d.a`.
+        // B's children against `d.a` (there may be four children, not two:
+        // divide by how many there are).
         let _ = (rule, d);
         todo!("exercise 18")
     }
