@@ -24,7 +24,7 @@ pub fn checks() -> Vec<Check> {
         },
         Check {
             exercise: 21,
-            name: "apart along one axis, on either side of the other box",
+            name: "apart along one axis, on either side, and along a turned box's own axis only",
             points: 2,
             run: |e| {
                 let a = cube(Vec3::ZERO);
@@ -44,7 +44,24 @@ pub fn checks() -> Vec<Check> {
                         ..turned_cube(std::f32::consts::FRAC_PI_4)
                     });
                 }
+                // A box turned about two axes, 0.05 beyond the other along
+                // its own thinnest axis and along no other of the fifteen
+                // (each of them overlaps by 0.3 or more).
+                let flat = turned(Vec3::ZERO, 0.0, 0.0);
+                let tilted = turned(Vec3::ZERO, 0.75, 4.25);
+                let u = tilted.axes[2];
+                let reach = |x: &Obb| -> f32 {
+                    (0..3)
+                        .map(|k| x.half_extents[k] * x.axes[k].dot(u).abs())
+                        .sum()
+                };
+                let t = reach(&flat) + reach(&tilted) + 0.05;
+                let beyond = Obb {
+                    center: u * t,
+                    ..tilted
+                };
                 pairs.iter().all(|b| overlap_is(e, &a, b, false))
+                    && overlap_is(e, &flat, &beyond, false)
             },
         },
         Check {
