@@ -110,19 +110,23 @@ pub trait Exercises {
     /// preorder (a node, then its whole first subtree, then its second): the
     /// node's box, and for an internal node the position *in your output* of
     /// its second (right) child; `None` for a leaf. The first child is always
-    /// the next entry.
+    /// the next entry. A tree built from no primitives has no entries; a tree
+    /// can be up to [`bvhkit::MAX_DEPTH`] (64) levels deep.
     fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)>;
 
     /// Exercise 13: quantize `child` (inside `parent`) to 8-bit grid
     /// coordinates `(lo, hi)` per axis, conservatively: with
     /// [`dequantize`]`(parent, k, q)` as the decoder, `dequantize(lo[k]) <=
     /// child.min[k]` and `dequantize(hi[k]) >= child.max[k]`, and as tight as
-    /// possible (the largest such `lo`, the smallest such `hi`).
+    /// possible (the largest such `lo`, the smallest such `hi`). On an axis
+    /// where the parent is flat (`min == max`) every grid line decodes to the
+    /// same value, so that axis gets `lo = 255` and `hi = 0`.
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]);
 
     /// Exercise 14a: bytes of `static` storage a top-down build over `n`
     /// primitives needs: the most nodes a binary tree over `n` primitives can
-    /// have, `node_bytes` each, plus one `u32` index per primitive.
+    /// have, `node_bytes` each, plus one `u32` index per primitive (no
+    /// primitives: no tree, 0 bytes).
     fn top_down_bytes(&self, n: usize, node_bytes: usize) -> usize;
     /// Exercise 14b: the most node pairs that can wait on the explicit stack
     /// of a two-tree traversal of two binary trees `depth_a` and `depth_b`
@@ -133,7 +137,9 @@ pub trait Exercises {
     /// Exercise 15a: the total time of a workload run for `frames` frames
     /// with a tree that takes `build_ms` to build and `query_ms` per query:
     /// built once when `rebuild_every_frame` is false, built every frame
-    /// when it is true; one query per frame either way.
+    /// when it is true; one query per frame either way. With 0 frames a tree
+    /// built once is still built (`build_ms`); one rebuilt every frame costs
+    /// nothing. Computed in `f64`.
     fn workload_ms(
         &self,
         build_ms: f64,
@@ -172,25 +178,30 @@ pub trait Exercises {
     /// both; `Alternate` opens A at even `d.depth` and B at odd; `Overlap`
     /// opens the side whose children lie, on average, least inside the other
     /// node, "inside" being the fraction of a child box's volume within the
-    /// other node's box (children are given; A on a tie). Never called with
-    /// `Larger` (that is exercise 4).
+    /// other node's box: the product over the axes of the shared extent over
+    /// the child's own, each factor clamped to `[0, 1]`. The children are
+    /// given (two, or up to four for a wide node: average over however many
+    /// there are), each of positive extent on every axis; A on a tie. Never
+    /// called with `Larger` (that is exercise 4).
     fn descent_open(&self, rule: Descent, d: &Decision<'_, Aabb>) -> Open;
 
     /// Exercise 19: the partition criteria of a top-down split, as a cost to
-    /// minimise, in `f64`, for children boxes `l` and `r` holding `nl` and `nr`
-    /// primitives: `Balance` is `|nl - nr|`; `SurfaceArea` is
+    /// minimise, in `f64` (areas and volumes from the extents `max - min`
+    /// widened to `f64`, the counts too), for children boxes `l` and `r`
+    /// holding `nl` and `nr` primitives: `Balance` is `|nl - nr|`; `SurfaceArea` is
     /// `nl * A(l) + nr * A(r)` (full surface areas); `Volume` is
     /// `V(l) + V(r)`; `LargerChild` is `max(V(l), V(r))`; `Overlap` is the
     /// volume of `l ∩ r` (0 when they do not overlap); `Separation` is minus
     /// the gap between the boxes, the gap being the largest distance between
-    /// them along any axis (negative when they overlap on every axis). Never
-    /// called with `Weighted`.
+    /// them along any axis (negative when they overlap on every axis, 0 when
+    /// they touch). Never called with `Weighted`.
     fn partition_cost(&self, criterion: Partition, l: &Aabb, nl: u32, r: &Aabb, nr: u32) -> f64;
 
     /// Exercise 20: the order in which a traversal from the root visits the
     /// nodes of `tree`, as node indices: depth-first is preorder, the left
     /// child's subtree before the right's; breadth-first is level by level,
-    /// left to right. The empty tree has no nodes.
+    /// left to right. The empty tree has no nodes; a tree can be up to
+    /// [`bvhkit::MAX_DEPTH`] (64) levels deep.
     fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32>;
 
     /// Exercise 21: do two oriented boxes overlap? The separating-axis test:

@@ -145,7 +145,8 @@ impl Exercises for Student {
     /// first so the left one is emitted next). The right child's output
     /// position is known only once the whole left subtree is out: remember
     /// which entry to patch. `tree.nodes()[i].children()` gives the children;
-    /// `tree.root()` is `None` for a tree built from no primitives.
+    /// `tree.root()` is `None` for a tree built from no primitives. Trees can
+    /// be `bvhkit::MAX_DEPTH` (64) levels deep: size a fixed stack for that.
     fn to_preorder(&self, tree: &Bvh<Aabb>) -> Vec<(Aabb, Option<u32>)> {
         let _ = tree;
         todo!("exercise 12")
@@ -154,6 +155,8 @@ impl Exercises for Student {
     /// Hint: estimate with `floor` / `ceil` of `(x - min) / step`, then check
     /// the estimate with `dequantize` itself and step it down (for `lo`) or up
     /// (for `hi`) while it is on the wrong side: rounding can put it there.
+    /// A grid line exactly on the child's face is fine (`<=` and `>=`). A flat
+    /// parent axis has step 0: do not divide by it (the answer is 255, 0).
     fn quantize(&self, parent: &Aabb, child: &Aabb) -> ([u8; 3], [u8; 3]) {
         let _ = (parent, child);
         todo!("exercise 13")
@@ -180,7 +183,8 @@ impl Exercises for Student {
         rebuild_every_frame: bool,
         frames: usize,
     ) -> f64 {
-        // Hint: how many builds and how many queries does each case run?
+        // Hint: how many builds and how many queries does each case run
+        // (with 0 frames too)? Keep everything in f64.
         let _ = (build_ms, query_ms, rebuild_every_frame, frames);
         todo!("exercise 15a")
     }
@@ -221,7 +225,8 @@ impl Exercises for Student {
         // the part of child `c` inside box `o` is the product over the axes
         // of (shared extent) / (c's extent), each factor clamped to [0, 1];
         // average it over `d.a_children.unwrap()` against `d.b`, and over
-        // B's children against `d.a`.
+        // B's children against `d.a` (there may be four children, not two:
+        // divide by how many there are).
         let _ = (rule, d);
         todo!("exercise 18")
     }
@@ -230,7 +235,8 @@ impl Exercises for Student {
         // Hint: `match criterion`. The intersection of two boxes has extents
         // `min(maxes) - max(mins)`: clamp negative ones to 0 before
         // multiplying (two negative extents make a positive product). The gap
-        // along an axis is `max(l.min - r.max, r.min - l.max)`.
+        // along an axis is `max(l.min - r.max, r.min - l.max)`. Widen to f64
+        // before multiplying: a count of 2^24 + 1 is not an f32.
         let _ = (criterion, l, nl, r, nr);
         todo!("exercise 19")
     }
@@ -238,7 +244,7 @@ impl Exercises for Student {
     fn visit_order(&self, tree: &Bvh<Aabb>, breadth_first: bool) -> Vec<u32> {
         // Hint: `tree.nodes()` and `Node::children()`; a queue (VecDeque)
         // for breadth-first, a stack for depth-first (which child goes on
-        // the stack first?).
+        // the stack first?). Trees can be 64 levels deep.
         let _ = (tree, breadth_first);
         todo!("exercise 20")
     }

@@ -262,3 +262,76 @@ pub(crate) fn show_box(b: &Aabb) -> String {
 pub(crate) fn show_point(p: Vec3) -> String {
     format!("({}, {}, {})", p.x, p.y, p.z)
 }
+
+/// `want == got` for lists, explained on failure by the first entry that
+/// differs (or the one missing or extra), each shown with `show`: for long
+/// outputs, where printing everything would bury the mistake.
+pub(crate) fn same_list<T: PartialEq>(
+    call: impl std::fmt::Display,
+    want: &[T],
+    got: &[T],
+    show: impl Fn(&T) -> String,
+) -> bool {
+    if want == got {
+        return true;
+    }
+    let (n, m) = (got.len(), want.len());
+    let why = match (0..n.min(m)).find(|&k| want[k] != got[k]) {
+        Some(k) => format!(
+            "{call} returned {n} entries, expected {m}; the first that differs is \
+             entry {k}: {}, expected {}",
+            show(&got[k]),
+            show(&want[k])
+        ),
+        None if n > m => format!(
+            "{call} returned {n} entries, expected {m}: the first {m} are right, \
+             then comes {}",
+            show(&got[m])
+        ),
+        None => format!(
+            "{call} returned {n} entries, expected {m}: the first {n} are right, \
+             then {} is missing",
+            show(&want[n])
+        ),
+    };
+    fail(why)
+}
+
+/// [`close`], explained on failure as "CALL returned GOT, expected WANT".
+pub(crate) fn near(call: impl std::fmt::Display, want: f64, got: f64) -> bool {
+    close(got, want) || fail(format!("{call} returned {got}, expected {want}"))
+}
+
+/// A tree `depth` levels deep whose left children are internal down to the
+/// last level and whose right children are leaves (one primitive each): a
+/// depth-first walk with a stack keeps one right child waiting per level.
+/// Internal node at level `d` is node `0` for `d = 0`, else `2d - 1`; its
+/// children are `2d + 1` and `2d + 2`. The right leaf under level `d` holds
+/// the unit cube at `x = d`, the last left leaf the one at `x = depth`.
+pub(crate) fn left_deep(depth: usize) -> (Vec<Node<Aabb>>, Vec<u32>) {
+    assert!(depth >= 1);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; 2 * depth + 1];
+    let internal = |d: usize| if d == 0 { 0 } else { 2 * d - 1 };
+    for d in 0..depth {
+        let i = internal(d);
+        nodes[i] = Node {
+            bv: Aabb::new(
+                Vec3::new(d as f32, 0.0, 0.0),
+                Vec3::new(depth as f32 + 1.0, 1.0, 1.0),
+            ),
+            first: 2 * d as u32 + 1,
+            count: 0,
+        };
+        nodes[2 * d + 2] = Node {
+            bv: unit_at(d as f32),
+            first: d as u32,
+            count: 1,
+        };
+    }
+    nodes[2 * depth - 1] = Node {
+        bv: unit_at(depth as f32),
+        first: depth as u32,
+        count: 1,
+    };
+    (nodes, (0..=depth as u32).collect())
+}

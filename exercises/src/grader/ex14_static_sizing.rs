@@ -14,7 +14,11 @@ pub fn checks() -> Vec<Check> {
                     .iter()
                     .all(|&(n, s)| {
                         let want = if n == 0 { 0 } else { (2 * n - 1) * s + 4 * n };
-                        e.top_down_bytes(n, s) == want
+                        same(
+                            format!("top_down_bytes({n}, {s})"),
+                            want,
+                            e.top_down_bytes(n, s),
+                        )
                     })
             },
         },
@@ -23,9 +27,15 @@ pub fn checks() -> Vec<Check> {
             name: "pair stack bound: equal depths and leaves",
             points: 3,
             run: |e| {
-                e.pair_stack_bound(0, 0) == 1
-                    && e.pair_stack_bound(1, 1) == 4
-                    && e.pair_stack_bound(7, 7) == 22
+                [(0, 0, 1), (1, 1, 4), (7, 7, 22), (40, 40, 121)]
+                    .iter()
+                    .all(|&(a, b, want)| {
+                        same(
+                            format!("pair_stack_bound({a}, {b})"),
+                            want,
+                            e.pair_stack_bound(a, b),
+                        )
+                    })
             },
         },
         Check {
@@ -33,8 +43,18 @@ pub fn checks() -> Vec<Check> {
             name: "pair stack bound: different depths, and enough for a real traversal",
             points: 3,
             run: |e| {
-                let formula = (0..40)
-                    .all(|a| (0..40).all(|b| e.pair_stack_bound(a, b) == a + b + a.min(b) + 1));
+                let formula = (0..40).all(|a| {
+                    (0..40).all(|b| {
+                        same(
+                            format!("pair_stack_bound({a}, {b})"),
+                            a + b + a.min(b) + 1,
+                            e.pair_stack_bound(a, b),
+                        )
+                    })
+                });
+                if !formula {
+                    return false;
+                }
                 // Balanced trees of 64 and 16 boxes: the bound lets a
                 // stack-only traversal of exactly that size finish.
                 let (pa, pb) = (grid_boxes(64, 0.0), grid_boxes(16, 0.3));
@@ -45,12 +65,18 @@ pub fn checks() -> Vec<Check> {
                     cfg.build(&pa, &mut na, &mut ia),
                     cfg.build(&pb, &mut nb, &mut ib),
                 ) else {
-                    return false;
+                    return fail("the grader could not build its trees");
                 };
                 let bound = e.pair_stack_bound(ta.depth(), tb.depth());
                 let mut stack = vec![(0u32, 0u32); bound];
                 let mut out = Vec::new();
-                formula && Reference.stack_dfs(&ta, &pa, &tb, &pb, &mut stack, &mut out)
+                Reference.stack_dfs(&ta, &pa, &tb, &pb, &mut stack, &mut out)
+                    || fail(format!(
+                        "pair_stack_bound({}, {}) returned {bound}: a stack of that many pairs \
+                         overflowed in a traversal of two balanced trees that deep",
+                        ta.depth(),
+                        tb.depth()
+                    ))
             },
         },
     ]
@@ -72,7 +98,7 @@ pub mod wrong {
     use super::*;
 
     /// How many wrong answers this exercise keeps.
-    pub const COUNT: u32 = 4;
+    pub const COUNT: u32 = 8;
 
     pub fn top_down_bytes(which: u32, n: usize, node_bytes: usize) -> usize {
         match which {
@@ -80,6 +106,13 @@ pub mod wrong {
             1 => bvhkit::max_nodes(n) * node_bytes,
             // One node per primitive plus one, as for a list.
             2 => (n + 1) * node_bytes + 4 * n,
+            // 2n - 1 nodes without minding n = 0 (wraps around).
+            5 => (2 * n)
+                .wrapping_sub(1)
+                .wrapping_mul(node_bytes)
+                .wrapping_add(4 * n),
+            // 2n nodes: one too many.
+            6 => 2 * n * node_bytes + 4 * n,
             _ => Reference.top_down_bytes(n, node_bytes),
         }
     }
@@ -90,6 +123,10 @@ pub mod wrong {
             3 => depth_a + depth_b + 1,
             // The larger depth three times: enough, but not the bound.
             4 => 3 * depth_a.max(depth_b) + 1,
+            // Forgets the pair being expanded.
+            7 => depth_a + depth_b + depth_a.min(depth_b),
+            // Both sides opened as often as the deeper tree allows.
+            8 => depth_a + depth_b + depth_a.max(depth_b) + 1,
             _ => Reference.pair_stack_bound(depth_a, depth_b),
         }
     }

@@ -18,7 +18,7 @@ pub fn checks() -> Vec<Check> {
                     (unit_at(2.0), 1),
                     (unit_at(10.0), 1),
                 ];
-                e.sah_best_boundary(&bins) == Some(3)
+                boundary_is(e, &bins, Some(3))
             },
         },
         Check {
@@ -27,12 +27,13 @@ pub fn checks() -> Vec<Check> {
             points: 2,
             run: |e| {
                 let empty = (Aabb::EMPTY, 0);
-                e.sah_best_boundary(&[empty, (unit_at(0.0), 1), (unit_at(3.0), 1), empty])
-                    == Some(2)
-                    && e.sah_best_boundary(&[empty, (unit_at(0.0), 2), empty])
-                        .is_none()
-                    && e.sah_best_boundary(&[(unit_at(0.0), 5)]).is_none()
-                    && e.sah_best_boundary(&[]).is_none()
+                boundary_is(
+                    e,
+                    &[empty, (unit_at(0.0), 1), (unit_at(3.0), 1), empty],
+                    Some(2),
+                ) && boundary_is(e, &[empty, (unit_at(0.0), 2), empty], None)
+                    && boundary_is(e, &[(unit_at(0.0), 5)], None)
+                    && boundary_is(e, &[], None)
             },
         },
         Check {
@@ -61,8 +62,17 @@ pub fn checks() -> Vec<Check> {
                             (Aabb::new(lo, lo + size), 1 + next(5) as u32)
                         })
                         .collect();
-                    e.sah_best_boundary(&bins) == Reference.sah_best_boundary(&bins)
-                })
+                    boundary_is(e, &bins, Reference.sah_best_boundary(&bins))
+                }) && {
+                    // Far from the origin: the boxes are 1 to 4 wide, not 100.
+                    let far = [
+                        (unit_at(100.0), 1),
+                        (unit_at(101.0), 1),
+                        (unit_at(102.0), 1),
+                        (unit_at(103.0), 5),
+                    ];
+                    boundary_is(e, &far, Some(3))
+                }
             },
         },
         Check {
@@ -73,10 +83,58 @@ pub fn checks() -> Vec<Check> {
                 // Evenly spaced: cutting after the first or the second costs
                 // the same (34).
                 let bins = [(unit_at(0.0), 1), (unit_at(2.0), 1), (unit_at(4.0), 1)];
-                e.sah_best_boundary(&bins) == Some(1)
+                // Far from the origin, with an empty bin between: 34 and 34 again.
+                let far = [
+                    (unit_at(100.0), 1),
+                    (Aabb::EMPTY, 0),
+                    (unit_at(102.0), 1),
+                    (unit_at(104.0), 1),
+                ];
+                boundary_is(e, &bins, Some(1)) && boundary_is(e, &far, Some(1))
             },
         },
     ]
+}
+
+/// Whether the boundary chosen for `bins` is `want`; explained with the
+/// bins (their boxes and counts) and the costs of both boundaries.
+fn boundary_is(e: &dyn Exercises, bins: &[(Aabb, u32)], want: Option<usize>) -> bool {
+    let got = e.sah_best_boundary(bins);
+    if got == want {
+        return true;
+    }
+    let shown: Vec<String> = bins
+        .iter()
+        .map(|(b, n)| match n {
+            0 => "(empty, 0)".to_string(),
+            _ => format!("({}, {n})", show_box(b)),
+        })
+        .collect();
+    let cost = |b: Option<usize>| match b {
+        Some(b) if (1..bins.len()).contains(&b) => {
+            let side = |s: &[(Aabb, u32)]| {
+                s.iter()
+                    .fold((Aabb::EMPTY, 0u32), |(x, n), (y, m)| (x.union(y), n + m))
+            };
+            let ((l, nl), (r, nr)) = (side(&bins[..b]), side(&bins[b..]));
+            if nl == 0 || nr == 0 {
+                " (leaves a side without primitives)".to_string()
+            } else {
+                format!(
+                    " (cost {})",
+                    l.surface_area() * nl as f32 + r.surface_area() * nr as f32
+                )
+            }
+        }
+        Some(_) => " (not a boundary between two bins)".to_string(),
+        None => String::new(),
+    };
+    fail(format!(
+        "sah_best_boundary([{}]) returned {got:?}{}, expected {want:?}{}",
+        shown.join(", "),
+        cost(got),
+        cost(want)
+    ))
 }
 
 /// Plausible wrong answers, numbered from 1; each loses points here.
@@ -85,7 +143,7 @@ pub mod wrong {
     use super::*;
 
     /// How many wrong answers this exercise keeps.
-    pub const COUNT: u32 = 4;
+    pub const COUNT: u32 = 7;
 
     pub fn sah_best_boundary(which: u32, bins: &[(Aabb, u32)]) -> Option<usize> {
         let count = |s: &[(Aabb, u32)]| s.iter().map(|b| b.1).sum::<u32>();
@@ -141,6 +199,25 @@ pub mod wrong {
             ),
             // The last of equal costs.
             4 => pick(&|b| both(b).then(|| sah(b)), true),
+            // Off by one: never tries the last boundary, bins.len() - 1.
+            5 => pick(&|b| (b + 1 < bins.len() && both(b)).then(|| sah(b)), false),
+            // Returns the last bin on the left (b - 1), not the boundary.
+            6 => Reference.sah_best_boundary(bins).map(|b| b - 1),
+            // Each side's box grown from the origin instead of from the empty box.
+            7 => pick(
+                &|b| {
+                    both(b).then(|| {
+                        let grown = |s: &[(Aabb, u32)]| {
+                            s.iter()
+                                .fold(Aabb::new(Vec3::ZERO, Vec3::ZERO), |a, x| a.union(&x.0))
+                        };
+                        let (l, r) = (&bins[..b], &bins[b..]);
+                        grown(l).surface_area() * count(l) as f32
+                            + grown(r).surface_area() * count(r) as f32
+                    })
+                },
+                false,
+            ),
             _ => Reference.sah_best_boundary(bins),
         }
     }
