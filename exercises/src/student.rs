@@ -49,7 +49,9 @@ impl Exercises for Student {
     }
 
     /// Hint: `select_nth_unstable_by` does the reordering in linear time.
-    /// The axis is chosen from the *centroids'* box, not the primitives'.
+    /// The axis is chosen from the box of the centroids that `indices`
+    /// names (not the primitives' boxes, not every centroid);
+    /// `Aabb::longest_axis` breaks ties as asked.
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
         let _ = (centroids, indices);
         todo!("exercise 3")
