@@ -59,7 +59,12 @@ pub trait Exercises {
 
     /// Exercise 5: the informed depth-first traversal of two trees, written
     /// recursively: push `(i, j)` into `out` for every primitive `i` of A and
-    /// `j` of B whose boxes overlap, each pair once.
+    /// `j` of B whose boxes overlap, each pair once, in any order. Prune: a
+    /// pair of nodes (the roots too) whose boxes miss is skipped with
+    /// everything beneath it; open the node [`descend_a`](Self::descend_a)
+    /// picks. The grader moves some nodes' boxes away from their contents:
+    /// nothing beneath such a node may be reported, so a pass over every
+    /// pair of leaves (or one that tests boxes only at the leaves) fails.
     fn informed_dfs(
         &self,
         a: &Bvh<Aabb>,
@@ -69,9 +74,14 @@ pub trait Exercises {
         out: &mut Vec<(u32, u32)>,
     );
 
-    /// Exercise 6: the same traversal without recursion, using only the
-    /// caller's fixed `stack` of node pairs. Returns `false` (and must not
-    /// panic) when the stack is too small; `true` when the traversal finished.
+    /// Exercise 6: the same traversal (same pairs, same pruning) without
+    /// recursion, using only the caller's fixed `stack` of node pairs: push
+    /// `(0, 0)`, then pop a pair at a time, skip it if its boxes miss, test
+    /// the primitives at two leaves, else push the two child pairs of the
+    /// opened node. Returns `false` (and must not panic) as soon as a push
+    /// finds the stack full; `true` when the traversal finished. A stack of
+    /// `depth(A) + depth(B) + 1` entries is always enough, and the grader
+    /// gives exactly that many on trees where that fills it to the last entry.
     fn stack_dfs(
         &self,
         a: &Bvh<Aabb>,
