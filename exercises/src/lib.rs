@@ -93,13 +93,18 @@ pub trait Exercises {
     ) -> bool;
 
     /// Exercise 7: the cost function `T = Nv*Cv + Np*Cp + Nu*Cu + Co` from a
-    /// query's counters and the unit costs.
+    /// query's counters and the unit costs, computed in `f64` throughout:
+    /// each `u64` counter converted to `f64` (counters can pass `u32` and
+    /// the 24 bits an `f32` holds exactly) and multiplied by its `f64` unit
+    /// cost. The grader accepts a relative difference of 1e-9.
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64;
 
     /// Exercise 8: the textbook bottom-up build, as its sequence of merges.
     /// Clusters `0..n` are the boxes; merge number `k` creates cluster
-    /// `n + k`. At every step merge the two live clusters whose merged box has
-    /// the smallest volume; return the pairs `(a, b)` merged, in order.
+    /// `n + k` (`k` from 0). At every step merge the two live clusters whose
+    /// merged box has the smallest volume (on a tie, any of them); return
+    /// the pairs `(a, b)` merged, in order: `n - 1` of them, none for fewer
+    /// than two boxes.
     fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)>;
 
     /// Exercise 9: refit a tree after its primitives moved. Every leaf box

@@ -96,7 +96,9 @@ impl Exercises for Student {
         todo!("exercise 6")
     }
 
-    /// Hint: the counters are integers (`u64`), the unit costs `f64`.
+    /// Hint: the counters are integers (`u64`), the unit costs `f64`: convert
+    /// each counter with `as f64` (not through `u32` or `f32`) and keep
+    /// everything in `f64`.
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
         let _ = (counts, model);
         todo!("exercise 7")
