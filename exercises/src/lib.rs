@@ -110,22 +110,28 @@ pub trait Exercises {
     /// Exercise 9: refit a tree after its primitives moved. Every leaf box
     /// becomes the union of its primitives' boxes, every internal box the
     /// union of its two children. Children are stored after their parent.
+    /// Change the boxes only (not `first` or `count`).
     fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]);
 
     /// Exercise 10: the Goldsmith–Salmon cost of inserting a new object with
     /// box `new` next to the node with box `sibling`, whose ancestors (parent
     /// first, root last) have boxes `ancestors`: the surface area of the new
     /// parent joining `sibling` and `new`, plus how much each ancestor's
-    /// surface area grows when it must also contain `new`.
+    /// surface area grows when it must also contain `new`. Each area as
+    /// [`BoundingVolume::surface_area`](bvhkit::BoundingVolume::surface_area)
+    /// gives it (`f32`), converted to `f64` before subtracting and adding up
+    /// (the total can pass 2^25, where `f32` steps by 4).
     fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64;
 
     /// Exercise 11a: in the implicit array of a complete binary tree (root at
-    /// 0, level by level), the indices of the two children of entry `i`.
+    /// 0, level by level), the indices of the two children of entry `i`, as
+    /// `(left, right)`.
     fn implicit_children(&self, i: usize) -> (usize, usize);
     /// Exercise 11b: the index of the parent of entry `i` (`None` for the root).
     fn implicit_parent(&self, i: usize) -> Option<usize>;
     /// Exercise 11c: how many entries the implicit array of a tree of depth
-    /// `depth` needs (the root alone has depth 0).
+    /// `depth` needs (the root alone has depth 0), for every depth up to 62
+    /// (the largest whose answer fits a 64-bit `usize`).
     fn implicit_len(&self, depth: u32) -> usize;
 
     /// Exercise 12: the tree in preorder. Return one entry per node, in
