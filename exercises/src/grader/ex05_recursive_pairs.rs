@@ -224,11 +224,14 @@ fn move_node(t: &mut Tree, i: u32, by: Vec3) {
     *bv = Aabb::new(bv.min + by, bv.max + by);
 }
 
+/// Two trees, the pairs expected from them, and the scene in words.
+pub(crate) type Scene = (Tree, Tree, Vec<(u32, u32)>, String);
+
 /// Scenes where a node's box has been moved far from everything, its
 /// contents left in place: a traversal that prunes never looks beneath it,
 /// one that walks every leaf pair (or tests only at the leaves) reports its
 /// primitives' pairs. Each with the pairs expected and a description.
-pub(crate) fn tampered_cases() -> Vec<(Tree, Tree, Vec<(u32, u32)>, String)> {
+pub(crate) fn tampered_cases() -> Vec<Scene> {
     let mut out = Vec::new();
     let mut cases = traversal_cases().into_iter();
     let (Some((mut a0, mut b0)), Some((a1, mut b1))) = (cases.next(), cases.next()) else {
