@@ -32,16 +32,23 @@ pub trait Exercises {
     fn aabb_fit(&self, points: &[Vec3]) -> Aabb;
     /// Exercise 2b: the smallest axis-aligned box containing two boxes.
     fn aabb_merge(&self, a: &Aabb, b: &Aabb) -> Aabb;
-    /// Exercise 2c: a sphere containing every point, at most 1.25x the radius
-    /// of the minimal sphere (Ritter's method is enough).
+    /// Exercise 2c: a sphere containing every point of a non-empty set (each
+    /// point's distance to the centre, computed in `f64`, at most the radius)
+    /// and at most 1.5 times the radius of the minimal sphere. Ritter's
+    /// method is enough: it stays under 1.3 times on the grader's point sets
+    /// (it can exceed 1.25 times).
     fn sphere_fit(&self, points: &[Vec3]) -> Sphere;
     /// Exercise 2d: a sphere containing two spheres, as small as possible.
     fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere;
 
     /// Exercise 3: the object-median partition of a top-down builder.
-    /// Reorder `indices` (which index `centroids`) so that the first `n / 2`
-    /// are those with the smallest coordinate along the longest axis of the
-    /// centroids' bounding box, and return `n / 2`.
+    /// `indices` (`n` of them) names some of the `centroids` (in a builder,
+    /// one node's primitives; `centroids` holds every primitive's). Take the
+    /// bounding box of the named centroids only, and its longest axis (on a
+    /// tie, x before y before z). Reorder `indices` so that the first `n / 2`
+    /// name the centroids with the smallest coordinates along that axis (the
+    /// object median: half the centroids on each side, not the middle of the
+    /// box; equal coordinates may go either side), and return `n / 2`.
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize;
 
     /// Exercise 4: the "descend the larger volume" rule of a two-tree
@@ -52,7 +59,12 @@ pub trait Exercises {
 
     /// Exercise 5: the informed depth-first traversal of two trees, written
     /// recursively: push `(i, j)` into `out` for every primitive `i` of A and
-    /// `j` of B whose boxes overlap, each pair once.
+    /// `j` of B whose boxes overlap, each pair once, in any order. Prune: a
+    /// pair of nodes (the roots too) whose boxes miss is skipped with
+    /// everything beneath it; open the node [`descend_a`](Self::descend_a)
+    /// picks. The grader moves some nodes' boxes away from their contents:
+    /// nothing beneath such a node may be reported, so a pass over every
+    /// pair of leaves (or one that tests boxes only at the leaves) fails.
     fn informed_dfs(
         &self,
         a: &Bvh<Aabb>,
@@ -62,9 +74,14 @@ pub trait Exercises {
         out: &mut Vec<(u32, u32)>,
     );
 
-    /// Exercise 6: the same traversal without recursion, using only the
-    /// caller's fixed `stack` of node pairs. Returns `false` (and must not
-    /// panic) when the stack is too small; `true` when the traversal finished.
+    /// Exercise 6: the same traversal (same pairs, same pruning) without
+    /// recursion, using only the caller's fixed `stack` of node pairs: push
+    /// `(0, 0)`, then pop a pair at a time, skip it if its boxes miss, test
+    /// the primitives at two leaves, else push the two child pairs of the
+    /// opened node. Returns `false` (and must not panic) as soon as a push
+    /// finds the stack full; `true` when the traversal finished. A stack of
+    /// `depth(A) + depth(B) + 1` entries is always enough, and the grader
+    /// gives exactly that many on trees where that fills it to the last entry.
     fn stack_dfs(
         &self,
         a: &Bvh<Aabb>,
@@ -76,34 +93,45 @@ pub trait Exercises {
     ) -> bool;
 
     /// Exercise 7: the cost function `T = Nv*Cv + Np*Cp + Nu*Cu + Co` from a
-    /// query's counters and the unit costs.
+    /// query's counters and the unit costs, computed in `f64` throughout:
+    /// each `u64` counter converted to `f64` (counters can pass `u32` and
+    /// the 24 bits an `f32` holds exactly) and multiplied by its `f64` unit
+    /// cost. The grader accepts a relative difference of 1e-9.
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64;
 
     /// Exercise 8: the textbook bottom-up build, as its sequence of merges.
     /// Clusters `0..n` are the boxes; merge number `k` creates cluster
-    /// `n + k`. At every step merge the two live clusters whose merged box has
-    /// the smallest volume; return the pairs `(a, b)` merged, in order.
+    /// `n + k` (`k` from 0). At every step merge the two live clusters whose
+    /// merged box has the smallest volume (on a tie, any of them); return
+    /// the pairs `(a, b)` merged, in order: `n - 1` of them, none for fewer
+    /// than two boxes.
     fn bottom_up_merges(&self, boxes: &[Aabb]) -> Vec<(u32, u32)>;
 
     /// Exercise 9: refit a tree after its primitives moved. Every leaf box
     /// becomes the union of its primitives' boxes, every internal box the
     /// union of its two children. Children are stored after their parent.
+    /// Change the boxes only (not `first` or `count`).
     fn refit(&self, nodes: &mut [Node<Aabb>], indices: &[u32], prims: &[Aabb]);
 
     /// Exercise 10: the Goldsmith–Salmon cost of inserting a new object with
     /// box `new` next to the node with box `sibling`, whose ancestors (parent
     /// first, root last) have boxes `ancestors`: the surface area of the new
     /// parent joining `sibling` and `new`, plus how much each ancestor's
-    /// surface area grows when it must also contain `new`.
+    /// surface area grows when it must also contain `new`. Each area as
+    /// [`BoundingVolume::surface_area`](bvhkit::BoundingVolume::surface_area)
+    /// gives it (`f32`), converted to `f64` before subtracting and adding up
+    /// (the total can pass 2^25, where `f32` steps by 4).
     fn insertion_cost(&self, sibling: &Aabb, ancestors: &[Aabb], new: &Aabb) -> f64;
 
     /// Exercise 11a: in the implicit array of a complete binary tree (root at
-    /// 0, level by level), the indices of the two children of entry `i`.
+    /// 0, level by level), the indices of the two children of entry `i`, as
+    /// `(left, right)`.
     fn implicit_children(&self, i: usize) -> (usize, usize);
     /// Exercise 11b: the index of the parent of entry `i` (`None` for the root).
     fn implicit_parent(&self, i: usize) -> Option<usize>;
     /// Exercise 11c: how many entries the implicit array of a tree of depth
-    /// `depth` needs (the root alone has depth 0).
+    /// `depth` needs (the root alone has depth 0), for every depth up to 62
+    /// (the largest whose answer fits a 64-bit `usize`).
     fn implicit_len(&self, depth: u32) -> usize;
 
     /// Exercise 12: the tree in preorder. Return one entry per node, in

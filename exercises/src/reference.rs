@@ -28,7 +28,11 @@ impl Exercises for Reference {
         a.merge(b)
     }
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
-        let cb = Aabb::fit(centroids);
+        // The box of the centroids the indices name (one node's primitives
+        // in a builder), not of the whole array.
+        let cb = indices.iter().fold(Aabb::EMPTY, |b, &i| {
+            b.union(&Aabb::from_point(centroids[i as usize]))
+        });
         let axis = cb.longest_axis();
         let mid = indices.len() / 2;
         if mid > 0 {

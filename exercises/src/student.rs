@@ -49,7 +49,9 @@ impl Exercises for Student {
     }
 
     /// Hint: `select_nth_unstable_by` does the reordering in linear time.
-    /// The axis is chosen from the *centroids'* box, not the primitives'.
+    /// The axis is chosen from the box of the centroids that `indices`
+    /// names (not the primitives' boxes, not every centroid);
+    /// `Aabb::longest_axis` breaks ties as asked.
     fn median_partition(&self, centroids: &[Vec3], indices: &mut [u32]) -> usize {
         let _ = (centroids, indices);
         todo!("exercise 3")
@@ -94,7 +96,9 @@ impl Exercises for Student {
         todo!("exercise 6")
     }
 
-    /// Hint: the counters are integers (`u64`), the unit costs `f64`.
+    /// Hint: the counters are integers (`u64`), the unit costs `f64`: convert
+    /// each counter with `as f64` (not through `u32` or `f32`) and keep
+    /// everything in `f64`.
     fn predicted_cost(&self, counts: &Counts, model: &CostModel) -> f64 {
         let _ = (counts, model);
         todo!("exercise 7")
