@@ -52,7 +52,7 @@ pub fn checks() -> Vec<Check> {
                             (nv, np, t)
                         })
                         .collect();
-                    fit_is(e, &format!("{d:?}"), &d, Reference.fit_unit_costs(&d))
+                    fit_is(e, &format!("10 samples of t = 5 Nv + 40 Np with +-20% noise, every other one 10,000 times larger: {d:?}"), &d, Reference.fit_unit_costs(&d))
                 })
             },
         },
@@ -86,7 +86,7 @@ pub fn checks() -> Vec<Check> {
                                 (nv, np, (a * nv as f64 + b * np as f64).abs() + 1.0)
                             })
                             .collect();
-                        fit_is(e, &format!("{d:?}"), &d, Reference.fit_unit_costs(&d))
+                        fit_is(e, &format!("6 samples of t = |a Nv + b Np| + 1: {d:?}"), &d, Reference.fit_unit_costs(&d))
                     })
             },
         },
