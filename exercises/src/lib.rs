@@ -238,12 +238,16 @@ pub trait Exercises {
     /// of an axis of A with one of B). Touching counts as overlapping.
     fn obb_overlaps(&self, a: &Obb, b: &Obb) -> bool;
 
-    /// Exercise 22: best-first search for the primitive box nearest to `p`
-    /// (distance from a point to a box: 0 inside). Take nodes from a
-    /// priority queue ordered by their box's distance to `p`, nearest
-    /// first, and stop once the nearest waiting node is farther than the best
-    /// primitive found. Return the primitive, its distance, and how many
-    /// nodes were taken from the queue; `None` for the empty tree.
+    /// Exercise 22: best-first search for the primitive box nearest to `p`.
+    /// The distance from `p` to a box is `b.distance_squared(p).sqrt()` in
+    /// `f32` (0 inside). Take nodes from a priority queue ordered by their
+    /// box's distance to `p`, nearest first, and stop once the nearest
+    /// waiting node is strictly farther than the best primitive found (a
+    /// node exactly as far is still taken). Return the primitive (the
+    /// smallest index among primitives equally near), its distance (not
+    /// squared), and how many nodes were taken from the queue: with this
+    /// stopping rule, exactly the nodes whose box is no farther from `p` than
+    /// the answer. `None` for the empty tree.
     fn best_first_nearest(
         &self,
         tree: &Bvh<Aabb>,
@@ -258,23 +262,27 @@ pub trait Exercises {
 
     /// Exercise 23b: the candidate pairs of one leaf pair, from kept bounds.
     /// Each leaf is its primitive ids and, side by side, their boxes. Return
-    /// every `(id of a, id of b)` whose boxes overlap (touching counts), A's
-    /// ids in their order, for each of them B's ids in theirs.
+    /// every `(id of a, id of b)` whose boxes overlap (`Aabb::overlaps`:
+    /// touching counts), A's ids in their order, for each of them B's ids in
+    /// theirs (a loop over A around a loop over B); nothing when none do.
     fn leaf_pair_candidates(&self, a: (&[u32], &[Aabb]), b: (&[u32], &[Aabb])) -> Vec<(u32, u32)>;
 
     /// Exercise 24: what a top-down builder does with a node of `n`
     /// primitives at `depth` (the root is at 0), given its stopping rules
-    /// `stop` (ignore `min_volume`) and the split its criterion proposes,
-    /// `left` primitives on one side. `weighs_counts` says whether the
+    /// `stop` (ignore `min_volume`; `max_leaf_size >= 1`) and the split its
+    /// criterion proposes, `left <= n` primitives on one side (the smaller
+    /// side holds `min(left, n - left)`). `weighs_counts` says whether the
     /// criterion weighs how many primitives each side gets
     /// (`Partition::weighs_counts`). In this order:
     /// [`NodeStep::Leaf`] when `n <= stop.max_leaf_size` or
     /// `depth >= stop.max_depth`; [`NodeStep::Halve`] when the levels left,
     /// `stop.max_depth - depth`, are no more than the levels needed to halve
-    /// the node down to leaves, `ceil(log2(ceil(n / max_leaf_size)))`;
-    /// [`NodeStep::FallBack`] when the proposed split puts everything on one
-    /// side, or (only for a criterion that does not weigh counts) when
-    /// `n >= 100` and the smaller side holds under 1% of `n`;
+    /// the node down to leaves, `ceil(log2(ceil(n / max_leaf_size)))`,
+    /// exact (in integers: `n` goes up to `u32::MAX`, and more than 31
+    /// levels may be left); [`NodeStep::FallBack`] when the proposed split
+    /// puts everything on one side, or (only for a criterion that does not
+    /// weigh counts) when `n >= 100` and the smaller side holds under 1% of
+    /// `n`, exactly `100 * smaller < n` (exactly 1% is not under it);
     /// [`NodeStep::Split`] otherwise.
     fn node_step(
         &self,
@@ -288,20 +296,26 @@ pub trait Exercises {
     /// Exercise 25: fit the unit costs `(Cv, Cp)` to measured queries.
     /// Each sample is `(Nv, Np, t)`: a query's volume tests, primitive tests
     /// and measured time. Return the `Cv >= 0, Cp >= 0` that minimise the
-    /// sum of squared *relative* errors, `((Nv*Cv + Np*Cp - t) / t)^2`.
-    /// Samples with `t <= 0` carry no information: skip them. When the best
-    /// unconstrained pair has a negative entry, the answer holds that one
-    /// at 0 and fits the other alone (or returns whichever of the two
-    /// one-cost fits leaves the smaller error). No usable sample (or only
-    /// zero counts): `(0.0, 0.0)`.
+    /// sum of squared *relative* errors, `((Nv*Cv + Np*Cp - t) / t)^2`,
+    /// computed in `f64` (the grader compares each cost to 1e-6, relative).
+    /// Samples with `t <= 0` (or not finite) carry no information: skip
+    /// them. When the best unconstrained pair has a negative entry, or the
+    /// rows `(Nv/t, Np/t)` are all proportional so that no pair is best
+    /// (the 2x2 normal equations' determinant at most `1e-12` times the
+    /// product of its diagonal), return the better one-cost fit: `Cv` alone
+    /// with `Cp = 0`, or `Cp` alone with `Cv = 0`, whichever leaves the
+    /// smaller error (`Cv` alone on a tie). With a negative entry that is
+    /// the one held at 0. No usable sample (or only zero counts):
+    /// `(0.0, 0.0)`.
     fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64);
 
     /// Exercise 26: where a top-down split goes, as `(axis, value)` with
     /// axis 0 = x, 1 = y, 2 = z: the plane `coordinate[axis] = value`.
     /// `axis` picks the coordinate axis from the centroids:
-    /// [`AxisRule::Longest`] the largest extent (max - min),
-    /// [`AxisRule::Variance`] the largest population variance
-    /// (`sum((c - mean)^2) / n`, in `f64`); a tie goes to the lower axis.
+    /// [`AxisRule::Longest`] the largest extent (max - min, in `f64`: it
+    /// may pass `f32::MAX`), [`AxisRule::Variance`] the largest population
+    /// variance (`sum((c - mean)^2) / n`, in `f64`, the mean first: far from
+    /// the origin `E[c^2] - mean^2` cancels); a tie goes to the lower axis.
     /// `point` places the plane on that axis: [`PointRule::ObjectMedian`]
     /// the coordinate at index `n / 2` of the sorted coordinates (the upper
     /// middle for even `n`), [`PointRule::ObjectMean`] the mean and
@@ -324,7 +338,8 @@ pub trait Exercises {
     /// `2 (xy + yz + zx)`, the corners widened to `f64` before subtracting
     /// (a box 1e30 wide has an area past `f32`'s range); when the
     /// root's area is 0 every ratio counts as 1. An empty tree measures
-    /// all zeros.
+    /// all zeros. Trees may be deeper than 32. The grader compares the
+    /// means and costs to 1e-9, relative.
     fn tree_measures(&self, tree: &Bvh<Aabb>) -> TreeMeasures;
 
     /// Exercise 28: the cost of storing `tree` as tri-nodes (a parent and
@@ -333,7 +348,8 @@ pub trait Exercises {
     /// node at an even depth (the root at 0), so `records` counts those
     /// nodes; a record rooted at a leaf fills one of its three volume slots
     /// and wastes the other two, so `unused_slots` is twice the number of
-    /// leaves at an even depth. An empty tree: `(0, 0)`.
+    /// leaves at an even depth. An empty tree: `(0, 0)`; a tree that is
+    /// one leaf: `(1, 2)`.
     fn tri_node_records(&self, tree: &Bvh<Aabb>) -> (usize, usize);
 
     /// Exercise 29: the tightest oriented box with the given orthonormal
@@ -345,8 +361,9 @@ pub trait Exercises {
     /// most `1e-5` (relative) above the exact one (half the projection
     /// range), plus what rounding costs far from the origin (the centre
     /// rounded to `f32`, and `f32` axes orthonormal only to about `1e-7`):
-    /// `2^-20 * max|center coordinate|`. `Obb::EMPTY` for no
-    /// points. Work in `f64`, place the centre at the middle of each axis's
+    /// `2^-20 * max|center coordinate|`. The box keeps the `axes` given,
+    /// unchanged, and its centre is in world coordinates. `Obb::EMPTY` for
+    /// no points. Work in `f64`, place the centre at the middle of each axis's
     /// projection range, then measure the half extents from the centre as
     /// rounded to `f32`, and round them up.
     fn fit_obb(&self, points: &[Vec3], axes: [Vec3; 3]) -> Obb;
@@ -358,16 +375,20 @@ pub trait Exercises {
     /// the largest such offset over the tree's internal nodes with the
     /// children in the order the tree has them (`Node::children`'s first
     /// is the left), and the largest when every node puts its smaller
-    /// subtree first. A tree without internal nodes: `(0, 0)`.
+    /// subtree first, `1 + min(left, right)`; subtree sizes count nodes,
+    /// leaves and internal alike. A tree without internal nodes (empty, or
+    /// one leaf): `(0, 0)`.
     fn preorder_offsets(&self, tree: &Bvh<Aabb>) -> (usize, usize);
 
     /// Exercise 31: the collision system's two phases. `boxes[i]` is object
     /// `i`'s world box. Broad phase: every pair `a < b` whose boxes overlap
-    /// (`Aabb::overlaps`: touching counts). Narrow phase: call
-    /// `narrow(a, b)` exactly once for each such pair, and never for any
-    /// other pair; it returns the pair's primitive contacts `(pa, pb)`.
-    /// Return every contact as `((a, b), (pa, pb))`, ordered by `(a, b)`,
-    /// and within a pair in the order `narrow` gave them.
+    /// (`Aabb::overlaps`: touching counts; `Aabb::EMPTY` overlaps nothing).
+    /// Narrow phase: call `narrow(a, b)`, `a < b`, exactly once for each
+    /// such pair, and never for any other pair (nor `(b, a)`, nor `(a, a)`);
+    /// it returns the pair's primitive contacts `(pa, pb)`. Return every
+    /// contact as `((a, b), (pa, pb))`, ordered by `(a, b)` (by `a`, then
+    /// `b`), and within a pair in the order `narrow` gave them, none
+    /// dropped and none reordered.
     fn collide_objects(
         &self,
         boxes: &[Aabb],

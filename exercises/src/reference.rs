@@ -424,7 +424,8 @@ impl Exercises for Reference {
             return NodeStep::Halve;
         }
         let smaller = left.min(n - left.min(n));
-        if smaller == 0 || (!weighs_counts && n >= 100 && smaller * 100 < n) {
+        // In u64: 100 times a side of 43 million primitives overflows u32.
+        if smaller == 0 || (!weighs_counts && n >= 100 && smaller as u64 * 100 < n as u64) {
             return NodeStep::FallBack;
         }
         NodeStep::Split

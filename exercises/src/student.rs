@@ -271,7 +271,9 @@ impl Exercises for Student {
         // Hint: `std::collections::BinaryHeap` is a max-heap: wrap keys in
         // `std::cmp::Reverse`; an `f32` is not `Ord`, but a non-negative
         // one's `to_bits()` sorts the same way. `Aabb::distance_squared`
-        // gives a box's (squared) distance to `p`.
+        // gives a box's squared distance to `p`: take its `sqrt()`. Stop on
+        // `>`, not `>=` (an equally near node may hold a smaller index), and
+        // count a node when you take it from the queue, not when you push it.
         let _ = (tree, prims, p);
         todo!("exercise 22")
     }
@@ -300,16 +302,19 @@ impl Exercises for Student {
     ) -> NodeStep {
         // Hint: test in the order the statement gives. `u32::div_ceil`
         // rounds the leaf count up; ceil(log2(k)) is the number of bits of
-        // `k - 1`. A 99-to-1 split is fine for the SAH, which prices it.
+        // `k - 1` (`f32::log2` rounds 2^24 + 1 down to 2^24). A 99-to-1
+        // split is fine for the SAH, which prices it. `100 * smaller`
+        // overflows a u32 past 42.9 million: widen to u64.
         let _ = (n, depth, stop, left, weighs_counts);
         todo!("exercise 24")
     }
 
     fn fit_unit_costs(&self, samples: &[(u64, u64, f64)]) -> (f64, f64) {
         // Hint: divide each row (Nv, Np) and its target t by t; then it is
-        // ordinary least squares towards 1, with the 2x2 normal equations.
-        // If a coefficient comes out negative, fit each cost alone and keep
-        // the one with the smaller error.
+        // ordinary least squares towards 1, with the 2x2 normal equations
+        // (sums in f64: nearly proportional rows leave f32 nothing). If a
+        // coefficient comes out negative, fit each cost alone and keep the
+        // one with the smaller error.
         let _ = samples;
         todo!("exercise 25")
     }
@@ -320,8 +325,9 @@ impl Exercises for Student {
         axis: AxisRule,
         point: PointRule,
     ) -> Option<(usize, f32)> {
-        // Hint: `Vec3` indexes as `c[k]`. Widen to f64 before adding: two
-        // coordinates near 3e38 overflow f32. A strict `>` keeps ties on
+        // Hint: `Vec3` indexes as `c[k]`. Widen to f64 before adding or
+        // subtracting: two coordinates near 3e38 overflow f32. Take the mean
+        // first, then the squared differences. A strict `>` keeps ties on
         // the lower axis.
         let _ = (centroids, axis, point);
         todo!("exercise 26")
@@ -365,8 +371,9 @@ impl Exercises for Student {
         narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
     ) -> Vec<((u32, u32), (u32, u32))> {
         // Hint: list the broad phase's pairs first (a < b, each once), sort
-        // them, then run the narrow phase pair by pair. An empty box
-        // (`Aabb::EMPTY`) overlaps nothing.
+        // them, then run the narrow phase pair by pair, keeping its contacts
+        // in the order it gives them. An empty box (`Aabb::EMPTY`) overlaps
+        // nothing (and a builder refuses it: leave it out of a tree).
         let _ = (boxes, narrow);
         todo!("exercise 31")
     }
