@@ -475,11 +475,16 @@ mod tests {
     }
 
     /// Every wrong answer kept with an exercise loses points on that
-    /// exercise, and each exercise keeps at least [`MIN_WRONG`] of them.
+    /// exercise, and each exercise keeps at least five of them.
     #[test]
     fn plausible_wrong_answers_lose_points() {
         let counts = super::wrong::counts();
         assert_eq!(counts.len(), EXERCISES.len());
+        let few: Vec<_> = counts.iter().filter(|&&(_, n)| n < 5).collect();
+        assert!(
+            few.is_empty(),
+            "exercises with fewer than 5 wrong answers: {few:?}"
+        );
         let mut full_marks = Vec::new();
         for (exercise, count) in counts {
             for k in 1..=count {
