@@ -16,6 +16,7 @@ pub mod grader;
 pub mod reference;
 pub mod student;
 
+use bvhkit::builders::DynNode;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
@@ -334,6 +335,33 @@ pub trait Exercises {
         boxes: &[Aabb],
         narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
     ) -> Vec<((u32, u32), (u32, u32))>;
+
+    /// Exercise 32a: where insertion puts a new object (the walk of the
+    /// library's `SiblingSearch::Descent`). `nodes[root]` is the root of a
+    /// tree of [`DynNode`]s holding at least one object (a leaf has
+    /// `left == NULL`; an internal node's children are `left` and `right`).
+    /// Walk down from the root. With `A` a box's surface area
+    /// (`BoundingVolume::surface_area`, widened to `f64`) and `n + new` the
+    /// union of two boxes, at an internal node `n`: staying costs
+    /// `2 A(n + new)`; descending into child `c` costs
+    /// `2 (A(n + new) - A(n))` (the growth of `n`, counted twice) plus
+    /// `A(c + new)` when `c` is a leaf, or plus `A(c + new) - A(c)` when it
+    /// is internal. Stop at `n` when staying costs strictly less than both
+    /// children; otherwise descend into the cheaper child (the left one on
+    /// a tie). The walk always stops at a leaf. Return the node it stops
+    /// at: the new object's sibling.
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32;
+
+    /// Exercise 32b: build a tree by inserting `boxes[order[0]]`, then
+    /// `boxes[order[1]]`, and so on. The first object is the root (a leaf);
+    /// each later one gets a new parent that takes the place of the sibling
+    /// 32a finds and joins the two (its box their union), and every
+    /// ancestor's box grows to contain the object. No rotations. Return
+    /// `(height, area_sum)`: the height (edges on the longest root-to-leaf
+    /// path, 0 for one leaf) and the sum of every node's surface area, each
+    /// widened to `f64` (what `DynamicTree::area_sum` reports). An empty
+    /// `order`: `(0, 0.0)`.
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -1,6 +1,7 @@
 //! Reference answers, written with the library.
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
+use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
@@ -622,5 +623,51 @@ impl Exercises for Reference {
             out.extend(narrow(a, b).into_iter().map(|p| ((a, b), p)));
         }
         out
+    }
+
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        // The walk of `SiblingSearch::Descent` in `core/src/builders/dynamic.rs`.
+        let area = |b: &Aabb| b.surface_area() as f64;
+        let mut n = root;
+        while nodes[n as usize].left != NULL {
+            let node = &nodes[n as usize];
+            let combined = area(&node.bv.union(new));
+            let here = 2.0 * combined;
+            let inheritance = 2.0 * (combined - area(&node.bv));
+            let child_cost = |c: u32| {
+                let cb = &nodes[c as usize].bv;
+                let m = area(&cb.union(new));
+                inheritance
+                    + if nodes[c as usize].left == NULL {
+                        m
+                    } else {
+                        m - area(cb)
+                    }
+            };
+            let (cl, cr) = (child_cost(node.left), child_cost(node.right));
+            if here < cl && here < cr {
+                break;
+            }
+            n = if cl <= cr { node.left } else { node.right };
+        }
+        n
+    }
+
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        let config = DynamicConfig {
+            search: SiblingSearch::Descent,
+            rotations: Rotations::Off,
+            margin: 0.0,
+        };
+        let mut storage = vec![DynNode::<Aabb>::EMPTY; bvhkit::max_nodes(order.len())];
+        let Ok(mut tree) = DynamicTree::new(&mut storage, config) else {
+            return (0, 0.0);
+        };
+        for &i in order {
+            if tree.insert(i, &boxes[i as usize]).is_err() {
+                return (0, f64::NAN);
+            }
+        }
+        (tree.height(), tree.area_sum())
     }
 }

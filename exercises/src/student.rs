@@ -2,6 +2,7 @@
 #![allow(clippy::todo)] // the stubs are meant to be unfinished
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
+use bvhkit::builders::DynNode;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
@@ -359,5 +360,23 @@ impl Exercises for Student {
         // (`Aabb::EMPTY`) overlaps nothing.
         let _ = (boxes, narrow);
         todo!("exercise 31")
+    }
+
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        // Hint: `bvhkit::builders::NULL` marks a leaf's missing `left`;
+        // `BoundingVolume::surface_area` (in scope with
+        // `use bvhkit::BoundingVolume`) and `Aabb::union` give the terms.
+        // Compare in `f64` exactly as the statement writes the costs.
+        let _ = (nodes, root, new);
+        todo!("exercise 32a")
+    }
+
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        // Hint: keep the nodes in a `Vec<DynNode<Aabb>>` (a leaf and, from
+        // the second object on, a new parent per object) and reuse your
+        // 32a; after linking the parent in, walk up through `parent` and
+        // widen each box.
+        let _ = (boxes, order);
+        todo!("exercise 32b")
     }
 }

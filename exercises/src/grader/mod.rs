@@ -37,6 +37,7 @@ mod ex28_tri_nodes;
 mod ex29_fit_obb;
 mod ex30_preorder_offsets;
 mod ex31_collision_system;
+mod ex32_insertion_descent;
 #[cfg(test)]
 mod wrong;
 
@@ -65,7 +66,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 31] = [
+pub const EXERCISES: [(u32, &str); 32] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -103,6 +104,7 @@ pub const EXERCISES: [(u32, &str); 31] = [
     (29, "oriented boxes: fit with given axes"),
     (30, "offsets instead of pointers: preorder links"),
     (31, "the collision system: broad phase, then narrow phase"),
+    (32, "insertion: where a new object goes, and the order"),
 ];
 
 /// A score for one exercise.
@@ -154,6 +156,7 @@ pub fn checks() -> Vec<Check> {
         ex29_fit_obb::checks(),
         ex30_preorder_offsets::checks(),
         ex31_collision_system::checks(),
+        ex32_insertion_descent::checks(),
     ]
     .concat()
 }
@@ -367,7 +370,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 330/330 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 348/348 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

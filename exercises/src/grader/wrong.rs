@@ -35,6 +35,8 @@ use super::ex28_tri_nodes;
 use super::ex29_fit_obb;
 use super::ex30_preorder_offsets;
 use super::ex31_collision_system;
+use super::ex32_insertion_descent;
+use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
 pub struct Wrong {
@@ -81,6 +83,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (29, ex29_fit_obb::wrong::COUNT),
         (30, ex30_preorder_offsets::wrong::COUNT),
         (31, ex31_collision_system::wrong::COUNT),
+        (32, ex32_insertion_descent::wrong::COUNT),
     ]
 }
 
@@ -244,5 +247,11 @@ impl Exercises for Wrong {
         narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
     ) -> Vec<((u32, u32), (u32, u32))> {
         ex31_collision_system::wrong::collide_objects(self.k(31), boxes, narrow)
+    }
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        ex32_insertion_descent::wrong::insertion_sibling(self.k(32), nodes, root, new)
+    }
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        ex32_insertion_descent::wrong::insertion_build(self.k(32), boxes, order)
     }
 }
