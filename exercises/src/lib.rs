@@ -362,6 +362,29 @@ pub trait Exercises {
     /// widened to `f64` (what `DynamicTree::area_sum` reports). An empty
     /// `order`: `(0, 0.0)`.
     fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64);
+
+    /// Exercise 33: best-first search for the closest hit along the ray
+    /// `origin + t * dir`, `t >= 0` (`dir` is finite and non-zero, of any
+    /// length: `t` is in its units). `hit(k)` tests primitive `k`: where
+    /// the ray hits it, `None` where it misses; the tree's node boxes bound
+    /// the primitives. A node's entry distance is the smallest `t >= 0` at
+    /// which the ray is in its box (closed: touching counts; 0 when `origin`
+    /// is inside), none when the ray misses it; where `dir` has a zero
+    /// component the ray is inside that slab for every `t` or for none.
+    /// Keep the nodes the ray enters in a priority queue by entry distance,
+    /// start with the root, always open the nearest, and stop when it is
+    /// farther than the best hit so far (one at exactly that distance is
+    /// still opened: it may hold a tie). Return the closest hit `(k, t)`,
+    /// `t` as `hit` gave it, the smaller `k` on equal `t`; `None` when
+    /// nothing is hit (or the tree is empty). Call `hit` at most once per
+    /// primitive: the grader counts the calls.
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)>;
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -3,6 +3,7 @@
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::Vec3;
+use bvhkit::query::{Ray, RayTarget};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
     PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
@@ -669,5 +670,53 @@ impl Exercises for Reference {
             }
         }
         (tree.height(), tree.area_sum())
+    }
+
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        // A node's entry distance: the library's ray test of a box (the
+        // slab test in `f64`, parallel slabs without a division).
+        let ray = Ray::new(origin, dir, f32::INFINITY).ok()?;
+        let enter = |b: &Aabb| b.ray_hit(&ray).map(|t| (t + 0.0).to_bits());
+        let nodes = tree.nodes();
+        let mut queue = BinaryHeap::new();
+        if let Some(t) = nodes.first().and_then(|root| enter(&root.bv)) {
+            queue.push(Reverse((t, 0u32)));
+        }
+        let mut best = None::<(u32, f32)>;
+        while let Some(Reverse((t, i))) = queue.pop() {
+            if best.is_some_and(|(_, b)| f32::from_bits(t) > b) {
+                break; // everything still queued is farther
+            }
+            let node = &nodes[i as usize];
+            match node.children() {
+                Some((l, r)) => {
+                    for c in [l, r] {
+                        if let Some(tc) = enter(&nodes[c as usize].bv) {
+                            queue.push(Reverse((tc, c)));
+                        }
+                    }
+                }
+                None => {
+                    let ids =
+                        &tree.indices()[node.first as usize..(node.first + node.count) as usize];
+                    for &k in ids {
+                        if let Some(t) = hit(k) {
+                            if best.is_none_or(|(j, b)| t < b || (t == b && k < j)) {
+                                best = Some((k, t));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
     }
 }

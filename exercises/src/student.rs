@@ -379,4 +379,21 @@ impl Exercises for Student {
         let _ = (boxes, order);
         todo!("exercise 32b")
     }
+
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        // Hint: the slab test, axis by axis: where `dir[k] == 0` do not
+        // divide (the ray is inside the slab for all `t` or for none); else
+        // the slab's two planes at `(min - origin) / dir` and
+        // `(max - origin) / dir`. The queue as in exercise 22 (`Reverse`,
+        // `to_bits` of a non-negative `f32`; `t + 0.0` turns a `-0.0` into
+        // `0.0`).
+        let _ = (tree, origin, dir, hit);
+        todo!("exercise 33")
+    }
 }

@@ -38,6 +38,7 @@ mod ex29_fit_obb;
 mod ex30_preorder_offsets;
 mod ex31_collision_system;
 mod ex32_insertion_descent;
+mod ex33_ray_best_first;
 #[cfg(test)]
 mod wrong;
 
@@ -66,7 +67,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 32] = [
+pub const EXERCISES: [(u32, &str); 33] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -105,6 +106,7 @@ pub const EXERCISES: [(u32, &str); 32] = [
     (30, "offsets instead of pointers: preorder links"),
     (31, "the collision system: broad phase, then narrow phase"),
     (32, "insertion: where a new object goes, and the order"),
+    (33, "best-first search for a ray: the closest hit"),
 ];
 
 /// A score for one exercise.
@@ -157,6 +159,7 @@ pub fn checks() -> Vec<Check> {
         ex30_preorder_offsets::checks(),
         ex31_collision_system::checks(),
         ex32_insertion_descent::checks(),
+        ex33_ray_best_first::checks(),
     ]
     .concat()
 }
@@ -370,7 +373,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 348/348 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 362/362 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

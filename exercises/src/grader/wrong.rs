@@ -36,6 +36,7 @@ use super::ex29_fit_obb;
 use super::ex30_preorder_offsets;
 use super::ex31_collision_system;
 use super::ex32_insertion_descent;
+use super::ex33_ray_best_first;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -84,6 +85,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (30, ex30_preorder_offsets::wrong::COUNT),
         (31, ex31_collision_system::wrong::COUNT),
         (32, ex32_insertion_descent::wrong::COUNT),
+        (33, ex33_ray_best_first::wrong::COUNT),
     ]
 }
 
@@ -253,5 +255,14 @@ impl Exercises for Wrong {
     }
     fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
         ex32_insertion_descent::wrong::insertion_build(self.k(32), boxes, order)
+    }
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        ex33_ray_best_first::wrong::ray_closest(self.k(33), tree, origin, dir, hit)
     }
 }
