@@ -385,6 +385,27 @@ pub trait Exercises {
         dir: Vec3,
         hit: &mut dyn FnMut(u32) -> Option<f32>,
     ) -> Option<(u32, f32)>;
+
+    /// Exercise 34a: one node of the 4-wide collapse, as `layout::Wide`
+    /// builds it from `tree`. The slots start as `node`'s two children,
+    /// `[left, right]`. While there are fewer than four slots and one of
+    /// them is an internal node, open the internal slot whose box has the
+    /// largest `Aabb::half_area()` (compared as `f32`; equal areas: the
+    /// larger `extent().element_sum()`; still equal: the later slot): its
+    /// left child takes its place and its right child is appended. Return
+    /// the slots (node indices of `tree`) in slot order; an empty `Vec`
+    /// when `node` is a leaf.
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32>;
+
+    /// Exercise 34b: the whole 4-wide tree. Its root holds the collapse
+    /// (34a) of `tree`'s root; each internal slot is a wide node holding
+    /// the collapse of its own node, and each leaf slot is a leaf. Return
+    /// `(inner, depth, empty_slots)`: how many wide internal nodes there
+    /// are, the depth of the deepest leaf in wide levels (`tree`'s root
+    /// at 0), and how many of the wide internal nodes' slots stay empty
+    /// (4 per node, less its children). A tree of one leaf, or none:
+    /// `(0, 0, 0)`.
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

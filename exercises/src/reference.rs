@@ -3,10 +3,11 @@
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::Vec3;
+use bvhkit::layout::{Wide, WideNode};
 use bvhkit::query::{Ray, RayTarget};
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
-    PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
+    Open, PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
 };
 
 /// The reference implementation: scores 100%.
@@ -718,5 +719,49 @@ impl Exercises for Reference {
             }
         }
         best
+    }
+
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        // The rule of `collapse` in `core/src/layout/mod.rs`.
+        let nodes = tree.nodes();
+        let Some((l, r)) = nodes[node as usize].children() else {
+            return Vec::new();
+        };
+        let mut slots = vec![l, r];
+        while slots.len() < 4 {
+            let size = |k: usize| {
+                let b = &nodes[slots[k] as usize].bv;
+                (b.half_area(), b.extent().element_sum())
+            };
+            // `max_by` keeps the last of equal elements: the later slot.
+            let widest = (0..slots.len())
+                .filter(|&k| !nodes[slots[k] as usize].is_leaf())
+                .max_by(|&x, &y| {
+                    let ((ax, lx), (ay, ly)) = (size(x), size(y));
+                    ax.total_cmp(&ay).then(lx.total_cmp(&ly))
+                });
+            let Some(k) = widest else { break };
+            let Some((cl, cr)) = nodes[slots[k] as usize].children() else {
+                break;
+            };
+            slots[k] = cl;
+            slots.push(cr);
+        }
+        slots
+    }
+
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        let Ok(needed) = Wide::records_needed(tree) else {
+            return (0, 0, 0);
+        };
+        let mut records = vec![WideNode::EMPTY; needed];
+        let Ok(wide) = Wide::from_bvh(tree, &mut records) else {
+            return (0, 0, 0);
+        };
+        // Record 0 is a header holding only the root; every other record
+        // is one wide internal node.
+        let inner = &wide.records()[needed.min(1)..];
+        let empty = inner.iter().map(|r| 4 - r.used()).sum();
+        (inner.len(), wide.depth(), empty)
     }
 }

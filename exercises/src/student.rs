@@ -396,4 +396,21 @@ impl Exercises for Student {
         let _ = (tree, origin, dir, hit);
         todo!("exercise 33")
     }
+
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        // Hint: `Node::children` gives `(left, right)` and `None` for a
+        // leaf; keep the slots in a `Vec` and pick the slot to open with a
+        // loop that keeps the best so far, replacing it on `>=` so that the
+        // later slot wins a complete tie.
+        let _ = (tree, node);
+        todo!("exercise 34a")
+    }
+
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        // Hint: a stack of (node, wide depth) pairs starting at the root;
+        // an internal node is one wide node with `wide_collapse` as its
+        // children, each one wide level deeper.
+        let _ = tree;
+        todo!("exercise 34b")
+    }
 }

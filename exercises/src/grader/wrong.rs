@@ -37,6 +37,7 @@ use super::ex30_preorder_offsets;
 use super::ex31_collision_system;
 use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
+use super::ex34_wide_nodes;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -86,6 +87,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (31, ex31_collision_system::wrong::COUNT),
         (32, ex32_insertion_descent::wrong::COUNT),
         (33, ex33_ray_best_first::wrong::COUNT),
+        (34, ex34_wide_nodes::wrong::COUNT),
     ]
 }
 
@@ -264,5 +266,11 @@ impl Exercises for Wrong {
         hit: &mut dyn FnMut(u32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
         ex33_ray_best_first::wrong::ray_closest(self.k(33), tree, origin, dir, hit)
+    }
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        ex34_wide_nodes::wrong::wide_collapse(self.k(34), tree, node)
+    }
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        ex34_wide_nodes::wrong::wide_measures(self.k(34), tree)
     }
 }
