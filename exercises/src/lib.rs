@@ -348,8 +348,8 @@ pub trait Exercises {
     /// `A(c + new)` when `c` is a leaf, or plus `A(c + new) - A(c)` when it
     /// is internal. Stop at `n` when staying costs strictly less than both
     /// children; otherwise descend into the cheaper child (the left one on
-    /// a tie). The walk always stops at a leaf. Return the node it stops
-    /// at: the new object's sibling.
+    /// a tie). A leaf ends the walk (so a tree of one leaf gives the
+    /// root). Return the node the walk ends at: the new object's sibling.
     fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32;
 
     /// Exercise 32b: build a tree by inserting `boxes[order[0]]`, then
