@@ -16,6 +16,7 @@ pub mod grader;
 pub mod reference;
 pub mod student;
 
+use bvhkit::builders::DynNode;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
@@ -394,6 +395,77 @@ pub trait Exercises {
         boxes: &[Aabb],
         narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
     ) -> Vec<((u32, u32), (u32, u32))>;
+
+    /// Exercise 32a: where insertion puts a new object (the walk of the
+    /// library's `SiblingSearch::Descent`). `nodes[root]` is the root of a
+    /// tree of [`DynNode`]s holding at least one object (a leaf has
+    /// `left == NULL`; an internal node's children are `left` and `right`).
+    /// Walk down from the root. With `A` a box's surface area
+    /// (`BoundingVolume::surface_area`, widened to `f64`) and `n + new` the
+    /// union of two boxes, at an internal node `n`: staying costs
+    /// `2 A(n + new)`; descending into child `c` costs
+    /// `2 (A(n + new) - A(n))` (the growth of `n`, counted twice) plus
+    /// `A(c + new)` when `c` is a leaf, or plus `A(c + new) - A(c)` when it
+    /// is internal. Stop at `n` when staying costs strictly less than both
+    /// children; otherwise descend into the cheaper child (the left one on
+    /// a tie). A leaf ends the walk (so a tree of one leaf gives the
+    /// root). Return the node the walk ends at: the new object's sibling.
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32;
+
+    /// Exercise 32b: build a tree by inserting `boxes[order[0]]`, then
+    /// `boxes[order[1]]`, and so on. The first object is the root (a leaf);
+    /// each later one gets a new parent that takes the place of the sibling
+    /// 32a finds and joins the two (its box their union), and every
+    /// ancestor's box grows to contain the object. No rotations. Return
+    /// `(height, area_sum)`: the height (edges on the longest root-to-leaf
+    /// path, 0 for one leaf) and the sum of every node's surface area, each
+    /// widened to `f64` (what `DynamicTree::area_sum` reports). An empty
+    /// `order`: `(0, 0.0)`.
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64);
+
+    /// Exercise 33: best-first search for the closest hit along the ray
+    /// `origin + t * dir`, `t >= 0` (`dir` is finite and non-zero, of any
+    /// length: `t` is in its units). `hit(k)` tests primitive `k`: where
+    /// the ray hits it, `None` where it misses; the tree's node boxes bound
+    /// the primitives. A node's entry distance is the smallest `t >= 0` at
+    /// which the ray is in its box (closed: touching counts; 0 when `origin`
+    /// is inside), none when the ray misses it; where `dir` has a zero
+    /// component the ray is inside that slab for every `t` or for none.
+    /// Keep the nodes the ray enters in a priority queue by entry distance,
+    /// start with the root, always open the nearest, and stop when it is
+    /// farther than the best hit so far (one at exactly that distance is
+    /// still opened: it may hold a tie). Return the closest hit `(k, t)`,
+    /// `t` as `hit` gave it, the smaller `k` on equal `t`; `None` when
+    /// nothing is hit (or the tree is empty). Call `hit` at most once per
+    /// primitive: the grader counts the calls.
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)>;
+
+    /// Exercise 34a: one node of the 4-wide collapse, as `layout::Wide`
+    /// builds it from `tree`. The slots start as `node`'s two children,
+    /// `[left, right]`. While there are fewer than four slots and one of
+    /// them is an internal node, open the internal slot whose box has the
+    /// largest `Aabb::half_area()` (compared as `f32`; equal areas: the
+    /// larger `extent().element_sum()`; still equal: the later slot): its
+    /// left child takes its place and its right child is appended. Return
+    /// the slots (node indices of `tree`) in slot order; an empty `Vec`
+    /// when `node` is a leaf.
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32>;
+
+    /// Exercise 34b: the whole 4-wide tree. Its root holds the collapse
+    /// (34a) of `tree`'s root; each internal slot is a wide node holding
+    /// the collapse of its own node, and each leaf slot is a leaf. Return
+    /// `(inner, depth, empty_slots)`: how many wide internal nodes there
+    /// are, the depth of the deepest leaf in wide levels (`tree`'s root
+    /// at 0), and how many of the wide internal nodes' slots stay empty
+    /// (4 per node, less its children). A tree of one leaf, or none:
+    /// `(0, 0, 0)`.
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -1,10 +1,13 @@
 //! Reference answers, written with the library.
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
+use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::Vec3;
+use bvhkit::layout::{Wide, WideNode};
+use bvhkit::query::{Ray, RayTarget};
 use bvhkit::{
-    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open,
-    PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
+    Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
+    Open, PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
 };
 
 /// The reference implementation: scores 100%.
@@ -627,5 +630,143 @@ impl Exercises for Reference {
             out.extend(narrow(a, b).into_iter().map(|p| ((a, b), p)));
         }
         out
+    }
+
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        // The walk of `SiblingSearch::Descent` in `core/src/builders/dynamic.rs`.
+        let area = |b: &Aabb| b.surface_area() as f64;
+        let mut n = root;
+        while nodes[n as usize].left != NULL {
+            let node = &nodes[n as usize];
+            let combined = area(&node.bv.union(new));
+            let here = 2.0 * combined;
+            let inheritance = 2.0 * (combined - area(&node.bv));
+            let child_cost = |c: u32| {
+                let cb = &nodes[c as usize].bv;
+                let m = area(&cb.union(new));
+                inheritance
+                    + if nodes[c as usize].left == NULL {
+                        m
+                    } else {
+                        m - area(cb)
+                    }
+            };
+            let (cl, cr) = (child_cost(node.left), child_cost(node.right));
+            if here < cl && here < cr {
+                break;
+            }
+            n = if cl <= cr { node.left } else { node.right };
+        }
+        n
+    }
+
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        let config = DynamicConfig {
+            search: SiblingSearch::Descent,
+            rotations: Rotations::Off,
+            margin: 0.0,
+        };
+        let mut storage = vec![DynNode::<Aabb>::EMPTY; bvhkit::max_nodes(order.len())];
+        let Ok(mut tree) = DynamicTree::new(&mut storage, config) else {
+            return (0, 0.0);
+        };
+        for &i in order {
+            if tree.insert(i, &boxes[i as usize]).is_err() {
+                return (0, f64::NAN);
+            }
+        }
+        (tree.height(), tree.area_sum())
+    }
+
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        // A node's entry distance: the library's ray test of a box (the
+        // slab test in `f64`, parallel slabs without a division).
+        let ray = Ray::new(origin, dir, f32::INFINITY).ok()?;
+        let enter = |b: &Aabb| b.ray_hit(&ray).map(|t| (t + 0.0).to_bits());
+        let nodes = tree.nodes();
+        let mut queue = BinaryHeap::new();
+        if let Some(t) = nodes.first().and_then(|root| enter(&root.bv)) {
+            queue.push(Reverse((t, 0u32)));
+        }
+        let mut best = None::<(u32, f32)>;
+        while let Some(Reverse((t, i))) = queue.pop() {
+            if best.is_some_and(|(_, b)| f32::from_bits(t) > b) {
+                break; // everything still queued is farther
+            }
+            let node = &nodes[i as usize];
+            match node.children() {
+                Some((l, r)) => {
+                    for c in [l, r] {
+                        if let Some(tc) = enter(&nodes[c as usize].bv) {
+                            queue.push(Reverse((tc, c)));
+                        }
+                    }
+                }
+                None => {
+                    let ids =
+                        &tree.indices()[node.first as usize..(node.first + node.count) as usize];
+                    for &k in ids {
+                        if let Some(t) = hit(k) {
+                            if best.is_none_or(|(j, b)| t < b || (t == b && k < j)) {
+                                best = Some((k, t));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        // The rule of `collapse` in `core/src/layout/mod.rs`.
+        let nodes = tree.nodes();
+        let Some((l, r)) = nodes[node as usize].children() else {
+            return Vec::new();
+        };
+        let mut slots = vec![l, r];
+        while slots.len() < 4 {
+            let size = |k: usize| {
+                let b = &nodes[slots[k] as usize].bv;
+                (b.half_area(), b.extent().element_sum())
+            };
+            // `max_by` keeps the last of equal elements: the later slot.
+            let widest = (0..slots.len())
+                .filter(|&k| !nodes[slots[k] as usize].is_leaf())
+                .max_by(|&x, &y| {
+                    let ((ax, lx), (ay, ly)) = (size(x), size(y));
+                    ax.total_cmp(&ay).then(lx.total_cmp(&ly))
+                });
+            let Some(k) = widest else { break };
+            let Some((cl, cr)) = nodes[slots[k] as usize].children() else {
+                break;
+            };
+            slots[k] = cl;
+            slots.push(cr);
+        }
+        slots
+    }
+
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        let Ok(needed) = Wide::records_needed(tree) else {
+            return (0, 0, 0);
+        };
+        let mut records = vec![WideNode::EMPTY; needed];
+        let Ok(wide) = Wide::from_bvh(tree, &mut records) else {
+            return (0, 0, 0);
+        };
+        // Record 0 is a header holding only the root; every other record
+        // is one wide internal node.
+        let inner = &wide.records()[needed.min(1)..];
+        let empty = inner.iter().map(|r| 4 - r.used()).sum();
+        (inner.len(), wide.depth(), empty)
     }
 }

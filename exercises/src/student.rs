@@ -2,6 +2,7 @@
 #![allow(clippy::todo)] // the stubs are meant to be unfinished
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
+use bvhkit::builders::DynNode;
 use bvhkit::glam::Vec3;
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
@@ -376,5 +377,57 @@ impl Exercises for Student {
         // nothing (and a builder refuses it: leave it out of a tree).
         let _ = (boxes, narrow);
         todo!("exercise 31")
+    }
+
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        // Hint: `bvhkit::builders::NULL` marks a leaf's missing `left`;
+        // `BoundingVolume::surface_area` (in scope with
+        // `use bvhkit::BoundingVolume`) and `Aabb::union` give the terms.
+        // Compare in `f64` exactly as the statement writes the costs.
+        let _ = (nodes, root, new);
+        todo!("exercise 32a")
+    }
+
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        // Hint: keep the nodes in a `Vec<DynNode<Aabb>>` (a leaf and, from
+        // the second object on, a new parent per object) and reuse your
+        // 32a; after linking the parent in, walk up through `parent` and
+        // widen each box.
+        let _ = (boxes, order);
+        todo!("exercise 32b")
+    }
+
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        // Hint: the slab test, axis by axis: where `dir[k] == 0` do not
+        // divide (the ray is inside the slab for all `t` or for none); else
+        // the slab's two planes at `(min - origin) / dir` and
+        // `(max - origin) / dir`. The queue as in exercise 22 (`Reverse`,
+        // `to_bits` of a non-negative `f32`; `t + 0.0` turns a `-0.0` into
+        // `0.0`).
+        let _ = (tree, origin, dir, hit);
+        todo!("exercise 33")
+    }
+
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        // Hint: `Node::children` gives `(left, right)` and `None` for a
+        // leaf; keep the slots in a `Vec` and pick the slot to open with a
+        // loop that keeps the best so far, replacing it on `>=` so that the
+        // later slot wins a complete tie.
+        let _ = (tree, node);
+        todo!("exercise 34a")
+    }
+
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        // Hint: a stack of (node, wide depth) pairs starting at the root;
+        // an internal node is one wide node with `wide_collapse` as its
+        // children, each one wide level deeper.
+        let _ = tree;
+        todo!("exercise 34b")
     }
 }

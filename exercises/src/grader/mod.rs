@@ -37,6 +37,9 @@ mod ex28_tri_nodes;
 mod ex29_fit_obb;
 mod ex30_preorder_offsets;
 mod ex31_collision_system;
+mod ex32_insertion_descent;
+mod ex33_ray_best_first;
+mod ex34_wide_nodes;
 #[cfg(test)]
 mod wrong;
 
@@ -65,7 +68,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 31] = [
+pub const EXERCISES: [(u32, &str); 34] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -103,6 +106,9 @@ pub const EXERCISES: [(u32, &str); 31] = [
     (29, "oriented boxes: fit with given axes"),
     (30, "offsets instead of pointers: preorder links"),
     (31, "the collision system: broad phase, then narrow phase"),
+    (32, "insertion: where a new object goes, and the order"),
+    (33, "best-first search for a ray: the closest hit"),
+    (34, "tree degree: collapsing into 4-wide nodes"),
 ];
 
 /// A score for one exercise.
@@ -154,6 +160,9 @@ pub fn checks() -> Vec<Check> {
         ex29_fit_obb::checks(),
         ex30_preorder_offsets::checks(),
         ex31_collision_system::checks(),
+        ex32_insertion_descent::checks(),
+        ex33_ray_best_first::checks(),
+        ex34_wide_nodes::checks(),
     ]
     .concat()
 }
@@ -367,7 +376,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 330/330 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 378/378 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

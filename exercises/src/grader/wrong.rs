@@ -35,6 +35,10 @@ use super::ex28_tri_nodes;
 use super::ex29_fit_obb;
 use super::ex30_preorder_offsets;
 use super::ex31_collision_system;
+use super::ex32_insertion_descent;
+use super::ex33_ray_best_first;
+use super::ex34_wide_nodes;
+use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
 pub struct Wrong {
@@ -81,6 +85,9 @@ pub fn counts() -> Vec<(u32, u32)> {
         (29, ex29_fit_obb::wrong::COUNT),
         (30, ex30_preorder_offsets::wrong::COUNT),
         (31, ex31_collision_system::wrong::COUNT),
+        (32, ex32_insertion_descent::wrong::COUNT),
+        (33, ex33_ray_best_first::wrong::COUNT),
+        (34, ex34_wide_nodes::wrong::COUNT),
     ]
 }
 
@@ -244,5 +251,26 @@ impl Exercises for Wrong {
         narrow: &mut dyn FnMut(u32, u32) -> Vec<(u32, u32)>,
     ) -> Vec<((u32, u32), (u32, u32))> {
         ex31_collision_system::wrong::collide_objects(self.k(31), boxes, narrow)
+    }
+    fn insertion_sibling(&self, nodes: &[DynNode<Aabb>], root: u32, new: &Aabb) -> u32 {
+        ex32_insertion_descent::wrong::insertion_sibling(self.k(32), nodes, root, new)
+    }
+    fn insertion_build(&self, boxes: &[Aabb], order: &[u32]) -> (usize, f64) {
+        ex32_insertion_descent::wrong::insertion_build(self.k(32), boxes, order)
+    }
+    fn ray_closest(
+        &self,
+        tree: &Bvh<Aabb>,
+        origin: Vec3,
+        dir: Vec3,
+        hit: &mut dyn FnMut(u32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        ex33_ray_best_first::wrong::ray_closest(self.k(33), tree, origin, dir, hit)
+    }
+    fn wide_collapse(&self, tree: &Bvh<Aabb>, node: u32) -> Vec<u32> {
+        ex34_wide_nodes::wrong::wide_collapse(self.k(34), tree, node)
+    }
+    fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
+        ex34_wide_nodes::wrong::wide_measures(self.k(34), tree)
     }
 }
