@@ -218,6 +218,34 @@ mod tests {
         assert_eq!(files, shown, "output files and the snippets that show them");
     }
 
+    /// The exercises chapter has a section per exercise, in number order,
+    /// each heading with the points the grader gives it.
+    #[test]
+    fn exercise_headings_match_the_grader() {
+        use bvhkit_exercises::grader::{checks, EXERCISES};
+        let chapter = include_str!("src/exercises.md");
+        for &(n, _) in EXERCISES.iter() {
+            let points: u32 = checks()
+                .iter()
+                .filter(|c| c.exercise == n)
+                .map(|c| c.points)
+                .sum();
+            let heading = chapter
+                .lines()
+                .find(|l| l.starts_with(&format!("## {n}. ")))
+                .unwrap_or_else(|| panic!("no section for exercise {n}"));
+            assert!(
+                heading.ends_with(&format!("({points} points)")),
+                "{heading}: the grader gives {points} points"
+            );
+        }
+        let sections = chapter
+            .lines()
+            .filter(|l| l.starts_with("## ") && l.as_bytes()[3].is_ascii_digit())
+            .count();
+        assert_eq!(sections, EXERCISES.len());
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {
