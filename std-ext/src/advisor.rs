@@ -430,28 +430,22 @@ pub struct Advice {
 /// (a soup, a field of grass) rather than lining a surface.
 pub const VOLUME_FILLING: f64 = 0.3;
 
-/// Below this many primitives a per-frame rebuild uses the object median
-/// (PLOC's Morton codes and cluster passes are a fixed cost that pays back
-/// only on larger inputs).
-pub const SMALL_SCENE: usize = 10_000;
-
 /// Picks a combination for `stats` under `workload`, with reasons.
 ///
 /// The rules, and what they rest on (the book's Performance chapter has
 /// the measurements):
 /// - **builder:** a deforming scene rebuilds every frame, so the build is
-///   paid per frame: PLOC, which builds as fast as the object median with
-///   trees close to SAH's, or the object median itself below
-///   [`SMALL_SCENE`] primitives. A static scene queried for pairs: PLOC too, its
-///   trees gave the fastest pair queries on most scenes measured. Rays,
-///   and pairs with B moving rigidly: binned SAH, whose cost model is the
-///   ray-hit probability and whose trees measured fastest there.
+///   paid per frame: binned SAH with 8 bins, which builds as fast as the
+///   object median or PLOC (from 1,280 to 75,000 triangles measured) and
+///   gives trees that query faster than either. Built once (static or
+///   rigid): binned SAH with 16 bins, whose trees measured fastest for pairs
+///   and rays.
 /// - **volume:** boxes, always. Tighter volumes prune more, but each test
 ///   costs more and boxes enable the 4-wide layout; no scene measured
 ///   preferred another volume, not even slivers, where spheres are 35 times
 ///   looser.
-/// - **layout:** 4-wide, unless the pair tree is rebuilt every frame (then
-///   the conversion is paid per frame and the canonical nodes win).
+/// - **layout:** 4-wide, unless the tree is rebuilt every frame (then the
+///   conversion is paid per frame and the canonical nodes win).
 /// - **walk:** rays depth-first, nearer child first. Pairs: simultaneous
 ///   descent when the objects are of similar size (the lectures' rule for
 ///   alike trees), larger-first when they differ by more than 2x; with B
@@ -460,30 +454,23 @@ pub fn advise(stats: &SceneStats, workload: &Workload) -> Advice {
     let mut reasons = Vec::new();
     let n = stats.primitives;
     let builder = match (workload.motion, workload.query) {
-        (Motion::Deforming, _) if n < SMALL_SCENE => {
-            reasons.push(format!(
-                "builder median: the scene deforms, so the tree is rebuilt every frame and the \
-                 build is part of each frame's cost; below {SMALL_SCENE} primitives ({n}) the \
-                 object median is the cheapest build, and PLOC's fixed costs do not pay back"
-            ));
-            BuilderChoice::Median
-        }
         (Motion::Deforming, _) => {
             reasons.push(format!(
-                "builder ploc-r4: the scene deforms, so the tree is rebuilt every frame and the \
-                 build is part of each frame's cost; PLOC builds {n} primitives about as fast as \
-                 the object median and its trees are close to SAH's"
+                "builder sah-8bins: the scene deforms, so the tree is rebuilt every frame and the \
+                 build is part of each frame's cost; binned SAH with 8 bins builds {n} primitives \
+                 about as fast as the object median or PLOC, and its trees query faster than \
+                 either (measured on every scene of the recorded bench run)"
             ));
-            BuilderChoice::Ploc
+            BuilderChoice::Sah8
         }
         (Motion::Static, QueryKind::Pairs) => {
             reasons.push(format!(
-                "builder ploc-r4: built once and queried {} times, so query speed decides; \
-                 merging nearest clusters gave the fastest pair queries on most measured scenes, \
-                 and it builds faster than SAH",
+                "builder sah: built once and queried {} times, so query speed decides; binned \
+                 SAH trees gave the fastest pair queries on the measured scenes (PLOC's build \
+                 is no faster and its trees query slower)",
                 workload.frames
             ));
-            BuilderChoice::Ploc
+            BuilderChoice::Sah
         }
         (Motion::Rigid, _) | (Motion::Static, QueryKind::Rays) => {
             reasons.push(format!(
@@ -501,11 +488,10 @@ pub fn advise(stats: &SceneStats, workload: &Workload) -> Advice {
          another volume)"
             .into(),
     );
-    let rebuilt_pairs = workload.motion == Motion::Deforming && workload.query == QueryKind::Pairs;
-    let layout = if rebuilt_pairs {
+    let layout = if workload.motion == Motion::Deforming {
         reasons.push(
-            "layout canonical: the pair trees are rebuilt every frame, and a conversion to the \
-             4-wide layout would be paid every frame for little gain in a pair walk"
+            "layout canonical: the tree is rebuilt every frame, and a conversion to the 4-wide \
+             layout would be paid every frame for less than it saves in one query"
                 .into(),
         );
         LayoutChoice::Canonical

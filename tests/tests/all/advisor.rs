@@ -6,7 +6,7 @@
 use bvhkit::{Descent, PairTraversal, RayOrder};
 use bvhkit_std::advisor::{
     advise, judge, measure_grid, workload_ms, BuilderChoice, Case, LayoutChoice, Motion, QueryKind,
-    SceneStats, VolumeChoice, Walk, Workload, SMALL_SCENE, VOLUME_FILLING,
+    SceneStats, VolumeChoice, Walk, Workload, VOLUME_FILLING,
 };
 use bvhkit_std::scene;
 
@@ -29,13 +29,22 @@ fn advice_follows_the_workload() {
     assert_eq!(rays.layout, LayoutChoice::Wide);
     assert_eq!(rays.walk, Walk::Rays(RayOrder::DepthFirst));
     let deforming = advise(&s, &Workload::new(QueryKind::Pairs, Motion::Deforming)).choice;
-    assert_eq!(deforming.builder, BuilderChoice::Ploc);
+    assert_eq!(deforming.builder, BuilderChoice::Sah8);
     let small = SceneStats {
-        primitives: SMALL_SCENE - 1,
+        primitives: 1_000,
         ..s
     };
     let rebuilt = advise(&small, &Workload::new(QueryKind::Rays, Motion::Deforming)).choice;
-    assert_eq!(rebuilt.builder, BuilderChoice::Median);
+    assert_eq!(
+        rebuilt.builder,
+        BuilderChoice::Sah8,
+        "small scenes too: measured"
+    );
+    assert_eq!(
+        rebuilt.layout,
+        LayoutChoice::Canonical,
+        "rays rebuilt: no conversion per frame"
+    );
     assert_eq!(
         deforming.layout,
         LayoutChoice::Canonical,
@@ -43,6 +52,7 @@ fn advice_follows_the_workload() {
     );
     let static_pairs = advise(&s, &Workload::new(QueryKind::Pairs, Motion::Static)).choice;
     assert_eq!(static_pairs.layout, LayoutChoice::Wide);
+    assert_eq!(static_pairs.builder, BuilderChoice::Sah);
     assert_eq!(
         static_pairs.walk,
         Walk::Pairs(PairTraversal::Stack(Descent::Simultaneous))
