@@ -246,6 +246,179 @@ mod tests {
         assert_eq!(sections, EXERCISES.len());
     }
 
+    /// The recorded `bvhkit bench` run the performance chapter includes
+    /// (`scripts/book-measure`): its JSON, and the rows of one table.
+    fn recorded_bench() -> serde_json::Value {
+        serde_json::from_str(include_str!("src/measured/bench/report.json")).unwrap()
+    }
+
+    fn rows<'r>(
+        run: &'r serde_json::Value,
+        table: &str,
+        scene: &str,
+    ) -> Vec<&'r serde_json::Value> {
+        run[table]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["scene"] == scene || r["mesh"] == scene)
+            .collect()
+    }
+
+    fn row<'r>(rows: &[&'r serde_json::Value], key: &str, name: &str) -> &'r serde_json::Value {
+        rows.iter()
+            .find(|r| r[key] == name)
+            .unwrap_or_else(|| panic!("no row {name}"))
+    }
+
+    /// The recorded run's deterministic columns are what the code builds
+    /// now: each builder's SAH cost on the rocks. A change to a builder
+    /// that alters its trees fails here until the run is recorded again.
+    #[test]
+    fn recorded_bench_run_matches_the_code() {
+        let run = recorded_bench();
+        assert!(run["recorded"].as_str().unwrap().contains(" UTC · "));
+        let rocks = rows(&run, "builders", "rocks");
+        let (a, _) = bvhkit_std::scene::rock_pair(5);
+        for (name, builder) in bvhkit_std::report::builder_candidates() {
+            let recorded = row(&rocks, "builder", &name)["sah_cost"].as_f64().unwrap();
+            let now = builder
+                .build::<bvhkit::Aabb>(&a)
+                .unwrap()
+                .view()
+                .stats()
+                .sah_cost;
+            assert!(
+                (recorded - now).abs() <= 1e-9 * now,
+                "{name}: the recorded run has SAH {recorded}, the code builds {now}: run \
+                 scripts/book-measure and read the performance chapter against it"
+            );
+        }
+        let all_verified = ["builders", "layouts", "advisor"].iter().all(|t| {
+            run[*t].as_array().unwrap().iter().all(|r| {
+                r["verified"] != false && r["same_answers"] != false && r["all_verified"] != false
+            })
+        });
+        assert!(all_verified, "a recorded answer differs from brute force");
+    }
+
+    /// What the performance chapter's prose says about the recorded run
+    /// holds in it (the prose cites the tables instead of copying numbers).
+    #[test]
+    fn the_performance_chapter_reads_the_recorded_run_right() {
+        let run = recorded_bench();
+        let num = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
+        // Fits: on the rock the exact sphere is the tightest and the box
+        // the fastest fit; on slivers every sphere is over ten times looser.
+        let rock = rows(&run, "fits", "rock");
+        assert_eq!(
+            num(row(&rock, "method", "sphere-welzl"), "volume_ratio"),
+            1.0
+        );
+        let fastest = rock
+            .iter()
+            .min_by(|x, y| num(x, "ms").total_cmp(&num(y, "ms")))
+            .unwrap();
+        assert_eq!(fastest["method"], "aabb");
+        let slivers = rows(&run, "fits", "slivers");
+        assert!(slivers
+            .iter()
+            .filter(|r| r["method"].as_str().unwrap().starts_with("sphere"))
+            .all(|r| num(r, "volume_ratio") > 10.0));
+        // Builders, on every scene: binned SAH on the front; the sweep within
+        // 2% of its SAH for over 5x its build time; min-overlap and
+        // max-separation dominated; PLOC's trees worse and slower to query,
+        // and PLOC dominated on the three scans.
+        for scene in [
+            "rocks",
+            "armadillo.off",
+            "ChineseDragon-10kv.off",
+            "bunny00.off",
+        ] {
+            let b = rows(&run, "builders", scene);
+            let (sah, sweep) = (row(&b, "builder", "sah"), row(&b, "builder", "sah-sweep"));
+            assert_eq!(sah["pareto"], true, "{scene}");
+            assert!(
+                num(sweep, "sah_cost") > 0.98 * num(sah, "sah_cost"),
+                "{scene}"
+            );
+            assert!(
+                num(sweep, "build_ms") > 5.0 * num(sah, "build_ms"),
+                "{scene}"
+            );
+            for dominated in ["min-overlap", "max-separation"] {
+                assert_eq!(
+                    row(&b, "builder", dominated)["pareto"],
+                    false,
+                    "{scene} {dominated}"
+                );
+            }
+            if scene != "rocks" {
+                assert_eq!(row(&b, "builder", "ploc-r4")["pareto"], false, "{scene}");
+            }
+            let ploc = row(&b, "builder", "ploc-r4");
+            assert!(num(ploc, "query_ms") > num(sah, "query_ms"), "{scene}");
+            assert!(num(ploc, "sah_cost") > num(sah, "sah_cost"), "{scene}");
+        }
+        // Narrow phase: the exact count of disagreements, and exactness
+        // costing more on near contacts than on random pairs.
+        let narrow = run["narrow"].as_array().unwrap();
+        let get = |pairs: &str, signs: &str| {
+            narrow
+                .iter()
+                .find(|r| r["pairs"] == pairs && r["signs"] == signs)
+                .unwrap()
+        };
+        let wrong = |p: &str, s: &str| {
+            let r = get(p, s);
+            (num(r, "disagreement") * num(r, "tested")).round() as u64
+        };
+        assert_eq!(wrong("adversarial", "f64"), 1);
+        assert_eq!(wrong("adversarial", "f32"), 341);
+        assert_eq!(wrong("random", "f32"), 0);
+        let slow =
+            |p: &str| num(get(p, "exact"), "ns_per_test") / num(get(p, "f64"), "ns_per_test");
+        assert!(slow("adversarial") > slow("random"));
+        // Scans: a PCA box is the tightest fit on all three (within 0.1%).
+        for mesh in ["armadillo.off", "ChineseDragon-10kv.off", "bunny00.off"] {
+            let fits = rows(&run, "fits", mesh);
+            assert!(
+                num(row(&fits, "method", "obb-pca"), "volume_ratio") < 1.001,
+                "{mesh}"
+            );
+        }
+        // Layouts: 4-wide casts rays fastest; quantized has the fewest bytes
+        // per triangle and is the slowest for both queries.
+        let layouts: Vec<&serde_json::Value> = run["layouts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["refused"].is_null())
+            .collect();
+        let best = |k: &str, min: bool| {
+            let pick = layouts.iter().min_by(|x, y| {
+                let o = num(x, k).total_cmp(&num(y, k));
+                if min {
+                    o
+                } else {
+                    o.reverse()
+                }
+            });
+            pick.unwrap()["layout"].as_str().unwrap()
+        };
+        assert_eq!(best("rays_ms", true), "wide-4");
+        assert_eq!(best("bytes_per_triangle", true), "quantized-4");
+        assert_eq!(best("rays_ms", false), "quantized-4");
+        assert_eq!(best("pairs_ms", false), "quantized-4");
+        // Advisor: better than the default on the geometric mean, and no
+        // longer off by 2x anywhere.
+        let adv = run["advisor"].as_array().unwrap();
+        let geo =
+            |k: &str| (adv.iter().map(|r| num(r, k).ln()).sum::<f64>() / adv.len() as f64).exp();
+        assert!(geo("ratio") < geo("default_ratio"));
+        assert!(adv.iter().all(|r| num(r, "ratio") < 2.0));
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {

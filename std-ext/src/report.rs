@@ -296,14 +296,10 @@ pub fn run_with_meshes(
 }
 
 /// Every builder on the scene `a` against `b`.
-fn builder_rows(
-    scene: &str,
-    a: &[Triangle],
-    b: &[Triangle],
-    runs: usize,
-    progress: &mut impl FnMut(&str),
-) -> Result<Vec<BuilderRow>, bvhkit::Error> {
-    let reference = tour::reference_pairs(a, b);
+/// The builders a report measures, by the names its builder table uses:
+/// every top-down preset, PLOC at radius 4 and the branch-and-bound
+/// insertion builder (shuffled).
+pub fn builder_candidates() -> Vec<(String, Builder)> {
     let mut candidates: Vec<(String, Builder)> = PRESETS
         .iter()
         .map(|p| (p.name.to_string(), Builder::TopDown(p.builder)))
@@ -325,6 +321,18 @@ fn builder_rows(
             },
         }),
     ));
+    candidates
+}
+
+fn builder_rows(
+    scene: &str,
+    a: &[Triangle],
+    b: &[Triangle],
+    runs: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<Vec<BuilderRow>, bvhkit::Error> {
+    let reference = tour::reference_pairs(a, b);
+    let candidates = builder_candidates();
     let mut builders = Vec::new();
     for (name, builder) in candidates {
         progress(&format!("{scene}: builder {name}"));
