@@ -466,6 +466,31 @@ pub trait Exercises {
     /// (4 per node, less its children). A tree of one leaf, or none:
     /// `(0, 0, 0)`.
     fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize);
+
+    /// Exercise 35: a whole top-down build, into the caller's arrays.
+    /// Build a tree over `boxes` (`n` of them) in `nodes` and `indices`:
+    /// - a node over at most `max_leaf` primitives (`max_leaf >= 1`) is a
+    ///   leaf; any other node is split by exercise 3's object median (the
+    ///   box of the node's centroids, its longest axis, the `n / 2` smallest
+    ///   centroids on the left), even when its centroids all coincide;
+    /// - the canonical layout: the root is `nodes[0]`; a leaf has
+    ///   `count >= 1` and holds `indices[first..first + count]`; an internal
+    ///   node has `count == 0` and its children at `first` (left) and
+    ///   `first + 1` (right);
+    /// - every node's `bv` is exactly the union of its primitives' boxes
+    ///   (`Aabb::union`; a centroid is `Aabb::center`);
+    /// - each primitive `0..n` is in exactly one leaf.
+    ///
+    /// Return the number of nodes written (`0` for no boxes), or `None`,
+    /// without panicking, when `nodes` has fewer than `2n - 1` entries or
+    /// `indices` fewer than `n`. The arrays may hold anything before.
+    fn top_down_build(
+        &self,
+        boxes: &[Aabb],
+        max_leaf: u32,
+        nodes: &mut [Node<Aabb>],
+        indices: &mut [u32],
+    ) -> Option<usize>;
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

@@ -769,4 +769,52 @@ impl Exercises for Reference {
         let empty = inner.iter().map(|r| 4 - r.used()).sum();
         (inner.len(), wide.depth(), empty)
     }
+
+    fn top_down_build(
+        &self,
+        boxes: &[Aabb],
+        max_leaf: u32,
+        nodes: &mut [Node<Aabb>],
+        indices: &mut [u32],
+    ) -> Option<usize> {
+        // The library's version is `TopDown::median()`; this one writes the
+        // rule of the statement out, node by node.
+        let n = boxes.len();
+        if n == 0 {
+            return Some(0);
+        }
+        if nodes.len() < 2 * n - 1 || indices.len() < n {
+            return None;
+        }
+        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+        for (k, i) in indices[..n].iter_mut().enumerate() {
+            *i = k as u32;
+        }
+        let mut used = 1;
+        // (node, start, end) ranges of `indices` still to place.
+        let mut work = vec![(0usize, 0usize, n)];
+        while let Some((node, start, end)) = work.pop() {
+            let bv = indices[start..end]
+                .iter()
+                .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
+            if end - start <= max_leaf as usize {
+                nodes[node] = Node {
+                    bv,
+                    first: start as u32,
+                    count: (end - start) as u32,
+                };
+                continue;
+            }
+            let mid = start + self.median_partition(&centroids, &mut indices[start..end]);
+            nodes[node] = Node {
+                bv,
+                first: used as u32,
+                count: 0,
+            };
+            work.push((used, start, mid));
+            work.push((used + 1, mid, end));
+            used += 2;
+        }
+        Some(used)
+    }
 }

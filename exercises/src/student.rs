@@ -430,4 +430,21 @@ impl Exercises for Student {
         let _ = tree;
         todo!("exercise 34b")
     }
+
+    fn top_down_build(
+        &self,
+        boxes: &[Aabb],
+        max_leaf: u32,
+        nodes: &mut [Node<Aabb>],
+        indices: &mut [u32],
+    ) -> Option<usize> {
+        // Hint: check the capacities first. Fill `indices` with 0..n, then
+        // keep a stack (or recurse) of (node, start, end) ranges of
+        // `indices`. For a range larger than `max_leaf`, call your
+        // `median_partition` on the centroids (exercise 3), take the next
+        // two free entries of `nodes` for the children, and push both
+        // halves. Write every field of every node you use.
+        let _ = (boxes, max_leaf, nodes, indices);
+        todo!("exercise 35")
+    }
 }

@@ -40,6 +40,7 @@ mod ex31_collision_system;
 mod ex32_insertion_descent;
 mod ex33_ray_best_first;
 mod ex34_wide_nodes;
+mod ex35_top_down_build;
 #[cfg(test)]
 mod wrong;
 
@@ -68,7 +69,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 34] = [
+pub const EXERCISES: [(u32, &str); 35] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -109,6 +110,7 @@ pub const EXERCISES: [(u32, &str); 34] = [
     (32, "insertion: where a new object goes, and the order"),
     (33, "best-first search for a ray: the closest hit"),
     (34, "tree degree: collapsing into 4-wide nodes"),
+    (35, "a whole top-down build, into the caller's arrays"),
 ];
 
 /// A score for one exercise.
@@ -163,6 +165,7 @@ pub fn checks() -> Vec<Check> {
         ex32_insertion_descent::checks(),
         ex33_ray_best_first::checks(),
         ex34_wide_nodes::checks(),
+        ex35_top_down_build::checks(),
     ]
     .concat()
 }
@@ -376,7 +379,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 378/378 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 390/390 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

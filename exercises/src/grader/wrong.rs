@@ -38,6 +38,7 @@ use super::ex31_collision_system;
 use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
 use super::ex34_wide_nodes;
+use super::ex35_top_down_build;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -88,6 +89,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (32, ex32_insertion_descent::wrong::COUNT),
         (33, ex33_ray_best_first::wrong::COUNT),
         (34, ex34_wide_nodes::wrong::COUNT),
+        (35, ex35_top_down_build::wrong::COUNT),
     ]
 }
 
@@ -272,5 +274,14 @@ impl Exercises for Wrong {
     }
     fn wide_measures(&self, tree: &Bvh<Aabb>) -> (usize, usize, usize) {
         ex34_wide_nodes::wrong::wide_measures(self.k(34), tree)
+    }
+    fn top_down_build(
+        &self,
+        boxes: &[Aabb],
+        max_leaf: u32,
+        nodes: &mut [Node<Aabb>],
+        indices: &mut [u32],
+    ) -> Option<usize> {
+        ex35_top_down_build::wrong::top_down_build(self.k(35), boxes, max_leaf, nodes, indices)
     }
 }
