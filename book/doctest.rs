@@ -467,5 +467,37 @@ mod tests {
             );
         }
         assert!(!run.contains("WRONG"));
+        // What "Reading it" says, on every mesh of the targets table: SAH
+        // below parry3d's; build and pairs below 1x parry3d but above the
+        // 0.33x target; the fastest build above obvhs's; default rays below
+        // CWBVH; quantized bytes above CWBVH's.
+        let targets: Vec<Vec<f64>> = run
+            .lines()
+            .skip_while(|l| !l.starts_with("#### Targets"))
+            .take_while(|l| !l.starts_with("#### Best"))
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| mesh"))
+            .map(|l| {
+                l.split('|')
+                    .skip(3)
+                    .filter_map(|c| c.trim().strip_suffix('x')?.parse().ok())
+                    .collect()
+            })
+            .collect();
+        assert!(targets.len() >= 5);
+        for r in &targets {
+            let [build, sah, fastest, _, pairs, rays, _, bytes] = r[..] else {
+                panic!("targets row {r:?}")
+            };
+            assert!(
+                sah < 1.0 && build < 1.0 && build > 0.33 && fastest > 1.0,
+                "{r:?}"
+            );
+            assert!(
+                pairs < 1.0 && pairs > 0.33 && rays < 1.0 && bytes > 1.0,
+                "{r:?}"
+            );
+        }
+        let chapter = include_str!("src/performance.md");
+        assert!(chapter.contains("not yet three\n  times faster"));
     }
 }
