@@ -419,6 +419,30 @@ mod tests {
         assert!(adv.iter().all(|r| num(r, "ratio") < 2.0));
     }
 
+    /// Snippets reach glam through `bvhkit::glam`, so that they paste into
+    /// a project whose only dependency is bvhkit.
+    #[test]
+    fn snippets_use_glam_through_bvhkit() {
+        for file in super::CHAPTERS {
+            let text =
+                std::fs::read_to_string(format!("{}/src/{file}", env!("CARGO_MANIFEST_DIR")))
+                    .unwrap();
+            for (k, block) in text.split("```").enumerate().skip(1).step_by(2) {
+                if !block.starts_with("rust") {
+                    continue;
+                }
+                let bare = block
+                    .match_indices("glam::")
+                    .any(|(at, _)| !block[..at].ends_with("bvhkit::"));
+                assert!(
+                    !bare,
+                    "{file}, code block {}: `glam::` without `bvhkit::`",
+                    k / 2 + 1
+                );
+            }
+        }
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {

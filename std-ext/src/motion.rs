@@ -36,7 +36,10 @@ pub struct MotionRow {
     pub same_pairs: bool,
 }
 
-fn twisted(rock: &[Triangle], radians_per_unit: f32) -> Vec<Triangle> {
+/// `rock` twisted about the vertical axis: each vertex turns by
+/// `radians_per_unit` times its height (`y`), the motion of
+/// [`refit_vs_rebuild`].
+pub fn twisted(rock: &[Triangle], radians_per_unit: f32) -> Vec<Triangle> {
     rock.iter()
         .map(|t| Triangle {
             v: t.v

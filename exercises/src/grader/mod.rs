@@ -497,7 +497,8 @@ mod tests {
             few.is_empty(),
             "exercises with fewer than 5 wrong answers: {few:?}"
         );
-        let mut full_marks = Vec::new();
+        let names: Vec<&str> = checks().iter().map(|c| c.name).collect();
+        let (mut full_marks, mut unexplained) = (Vec::new(), Vec::new());
         for (exercise, count) in counts {
             for k in 1..=count {
                 // Leaked: each check runs on a thread that may outlive the call.
@@ -506,11 +507,22 @@ mod tests {
                 if s.earned >= s.possible {
                     full_marks.push((exercise, k));
                 }
+                // A failure that is only the check's name tells the student
+                // nothing about the input, the expected and the returned.
+                for f in &s.failed {
+                    if names.contains(&f.as_str()) {
+                        unexplained.push((exercise, k, f.clone()));
+                    }
+                }
             }
         }
         assert!(
             full_marks.is_empty(),
             "wrong answers (exercise, k) with full marks: {full_marks:?}"
+        );
+        assert!(
+            unexplained.is_empty(),
+            "failures without an explanation (exercise, wrong answer, check): {unexplained:?}"
         );
     }
 
