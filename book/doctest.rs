@@ -443,6 +443,47 @@ mod tests {
         }
     }
 
+    /// The embedded chapter's footprint table is the one `scripts/embedded-demo`
+    /// wrote (recorded by `scripts/book-measure`, stamped with the toolchain),
+    /// every set is in it, and the minimal set is within the budget the
+    /// chapter states (64 KiB of flash, 6 KiB of stack over the baseline).
+    #[test]
+    fn recorded_embedded_footprint_is_complete_and_within_budget() {
+        let chapter = include_str!("src/embedded.md");
+        assert!(chapter.contains("{{#include measured/embedded-footprint.md}}"));
+        let table = include_str!("src/measured/embedded-footprint.md");
+        let stamp = table.lines().next().unwrap();
+        assert!(
+            stamp.starts_with("Recorded ") && stamp.contains(" UTC with rustc "),
+            "{stamp}"
+        );
+        let row = |set: &str| -> Vec<u64> {
+            let line = table
+                .lines()
+                .find(|l| l.starts_with(&format!("| {set} |")))
+                .unwrap_or_else(|| panic!("no row for {set}"));
+            line.split('|')
+                .skip(2)
+                .filter_map(|c| c.trim().parse().ok())
+                .collect()
+        };
+        for set in [
+            "baseline",
+            "minimal",
+            "minimal,print-display",
+            "minimal,print-debug",
+            "typical",
+            "everything",
+        ] {
+            assert_eq!(row(set).len(), 6, "{set}");
+        }
+        let minimal = row("minimal");
+        assert!(
+            minimal[1] <= 64 * 1024 && minimal[4] <= 6 * 1024,
+            "{minimal:?}"
+        );
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {
