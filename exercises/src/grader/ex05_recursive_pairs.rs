@@ -375,19 +375,7 @@ pub mod wrong {
             // No pruning: every pair of leaves in tree order, their boxes
             // then their primitives tested (right on honest trees).
             2 => {
-                for x in a.nodes().iter().filter(|n| n.is_leaf()) {
-                    for y in b.nodes().iter().filter(|n| n.is_leaf()) {
-                        if x.bv.overlaps(&y.bv) {
-                            for &p in a.leaf_primitives(x) {
-                                for &q in b.leaf_primitives(y) {
-                                    if pa[p as usize].overlaps(&pb[q as usize]) {
-                                        out.push((p, q));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
+                every_leaf_pair(a, pa, b, pb, out);
             }
             // 3: recursive, but tests boxes only at two leaves (no pruning).
             // 4: recurses into the first child twice, never the second.
@@ -396,6 +384,31 @@ pub mod wrong {
             // 7: never tests the roots' boxes.
             3..=7 => visit(which, a, pa, b, pb, (0, 0), true, out),
             _ => Reference.informed_dfs(a, pa, b, pb, out),
+        }
+    }
+
+    /// The traversal without pruning (wrong in exercises 5 and 6): every
+    /// pair of leaves in tree order, their boxes then their primitives
+    /// tested. Right on honest trees; the tampered ones catch it.
+    pub fn every_leaf_pair(
+        a: &Bvh<Aabb>,
+        pa: &[Aabb],
+        b: &Bvh<Aabb>,
+        pb: &[Aabb],
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        for x in a.nodes().iter().filter(|n| n.is_leaf()) {
+            for y in b.nodes().iter().filter(|n| n.is_leaf()) {
+                if x.bv.overlaps(&y.bv) {
+                    for &p in a.leaf_primitives(x) {
+                        for &q in b.leaf_primitives(y) {
+                            if pa[p as usize].overlaps(&pb[q as usize]) {
+                                out.push((p, q));
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 }

@@ -204,19 +204,7 @@ pub mod wrong {
             }
             // No pruning and no stack: every pair of leaves in tree order.
             4 => {
-                for x in a.nodes().iter().filter(|n| n.is_leaf()) {
-                    for y in b.nodes().iter().filter(|n| n.is_leaf()) {
-                        if x.bv.overlaps(&y.bv) {
-                            for &p in a.leaf_primitives(x) {
-                                for &q in b.leaf_primitives(y) {
-                                    if pa[p as usize].overlaps(&pb[q as usize]) {
-                                        out.push((p, q));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
+                super::super::ex05_recursive_pairs::wrong::every_leaf_pair(a, pa, b, pb, out);
                 true
             }
             2 | 3 | 5..=7 => walk(which, a, pa, b, pb, stack, out),
