@@ -489,6 +489,81 @@ mod tests {
         );
     }
 
+    /// The cost model's held-out table (characteristics chapter) is
+    /// rendered from the recorded `bvhkit cost-model` run
+    /// (`book/src/measured/cost-model.json`, by `scripts/book-measure`):
+    /// per held-out scene and volume, the queries predicted within 25% and
+    /// the worst error. `BVHKIT_BLESS` writes the table; otherwise it must be
+    /// what the run gives, and the chapter's claims must hold in the run.
+    #[test]
+    fn recorded_cost_model_table_and_claims() {
+        let run: serde_json::Value =
+            serde_json::from_str(include_str!("src/measured/cost-model.json")).unwrap();
+        let rows = run["rows"].as_array().unwrap();
+        let (mut scenes, mut volumes) = (Vec::new(), Vec::new());
+        for r in rows {
+            let (s, v) = (r["scene"].as_str().unwrap(), r["volume"].as_str().unwrap());
+            if !scenes.contains(&s) {
+                scenes.push(s);
+            }
+            if !volumes.contains(&v) {
+                volumes.push(v);
+            }
+        }
+        let err = |r: &serde_json::Value| r["error"].as_f64().unwrap();
+        let mut table = format!(
+            "Recorded {} · {} interleaved rounds per query.\n\n| held-out scene | {} |\n|---|{}\n",
+            run["recorded"].as_str().unwrap(),
+            run["rounds"],
+            volumes.join(" | "),
+            "---|".repeat(volumes.len())
+        );
+        for s in &scenes {
+            table += &format!("| {s} |");
+            for v in &volumes {
+                let cell: Vec<f64> = rows
+                    .iter()
+                    .filter(|r| r["scene"] == *s && r["volume"] == *v)
+                    .map(err)
+                    .collect();
+                let within = cell.iter().filter(|e| e.abs() <= 0.25).count();
+                let worst = cell
+                    .iter()
+                    .copied()
+                    .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+                    .unwrap();
+                table += &format!(" {within}/{}, {:+.0}% |", cell.len(), worst * 100.0);
+            }
+            table += "\n";
+        }
+        let within = rows.iter().filter(|r| err(r).abs() <= 0.25).count();
+        table += &format!(
+            "\n{within} of the {} held-out queries ({}%) are predicted within 25%.\n",
+            rows.len(),
+            within * 100 / rows.len()
+        );
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/measured/cost-model.md");
+        if std::env::var_os("BVHKIT_BLESS").is_some() {
+            std::fs::write(path, &table).unwrap();
+        }
+        assert_eq!(
+            std::fs::read_to_string(path).unwrap(),
+            table,
+            "the cost-model table differs from its recorded run: BVHKIT_BLESS=1 cargo test -p bvhkit-book --lib"
+        );
+        // The chapter: most held-out queries within 25%; misses both ways;
+        // the worst an over-prediction on a sphere tree.
+        assert!(within * 10 >= rows.len() * 8, "{within} of {}", rows.len());
+        assert!(rows.iter().any(|r| err(r) > 0.25) && rows.iter().any(|r| err(r) < -0.25));
+        let worst = rows
+            .iter()
+            .max_by(|a, b| err(a).abs().total_cmp(&err(b).abs()))
+            .unwrap();
+        assert!(err(worst) > 0.0 && worst["volume"] == "sphere", "{worst}");
+        let chapter = include_str!("src/characteristics.md");
+        assert!(chapter.contains("{{#include measured/cost-model.md}}"));
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {
