@@ -562,6 +562,33 @@ mod tests {
         assert!(err(worst) > 0.0 && worst["volume"] == "sphere", "{worst}");
         let chapter = include_str!("src/characteristics.md");
         assert!(chapter.contains("{{#include measured/cost-model.md}}"));
+        // "Cv per traversal": an overlap visit over twice a larger visit for
+        // every volume, over five times for spheres and OBBs; Ce several
+        // times Cp.
+        for m in run["models"].as_array().unwrap() {
+            let visit = |t: &str| {
+                m["visit_ns"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .find(|p| p[0] == t)
+                    .unwrap()[1]
+                    .as_f64()
+                    .unwrap()
+            };
+            let ratio = visit("stack overlap") / visit("stack larger");
+            let many = m["volume"] == "sphere" || m["volume"] == "obb";
+            assert!(
+                ratio > 2.0 && (!many || ratio > 5.0),
+                "{} {ratio}",
+                m["volume"]
+            );
+            let (ce, cp) = (
+                m["exact_ns"].as_f64().unwrap(),
+                m["prim_ns"].as_f64().unwrap(),
+            );
+            assert!(ce > 4.0 * cp, "{} {ce} {cp}", m["volume"]);
+        }
     }
 
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
