@@ -487,6 +487,30 @@ mod tests {
             minimal[1] <= 64 * 1024 && minimal[4] <= 6 * 1024,
             "{minimal:?}"
         );
+        // The chapter's figures, derived from the table: what printing
+        // with `{}` and `{:?}` adds, and how far the minimal set is from the
+        // 32 KiB / 4 KiB aim.
+        let display = row("minimal,print-display")[0] - minimal[0];
+        let debug = row("minimal,print-debug")[0] - minimal[0];
+        let thousands = |n: u64| {
+            if n >= 1000 {
+                format!("{} {:03}", n / 1000, n % 1000)
+            } else {
+                n.to_string()
+            }
+        };
+        let kb = |n: u64| format!("{:.1} KB", n as f64 / 1000.0);
+        for claim in [
+            format!("its numbers, {display} B more"),
+            format!("{} more than `as_str` ({} B)", kb(debug), thousands(debug)),
+            format!(
+                "the stack is {} over it, the flash\n{}",
+                kb(minimal[4] - 4096),
+                kb(minimal[1] - 32 * 1024)
+            ),
+        ] {
+            assert!(chapter.contains(&claim), "embedded.md should say: {claim}");
+        }
     }
 
     /// The cost model's held-out table (characteristics chapter) is
