@@ -39,6 +39,17 @@ pub struct MotionRow {
 /// `rock` twisted about the vertical axis: each vertex turns by
 /// `radians_per_unit` times its height (`y`), the motion of
 /// [`refit_vs_rebuild`].
+///
+/// ```
+/// use bvhkit_std::{motion::twisted, scene};
+/// let rock = scene::rock(2, 1);
+/// let moved = twisted(&rock, 0.3);
+/// assert_eq!(moved.len(), rock.len());
+/// // A vertex at height 0 stays; one higher up turns about the y axis.
+/// assert_eq!(twisted(&rock, 0.0), rock);
+/// let (p, q) = (rock[0].v[0], moved[0].v[0]);
+/// assert!((p.y - q.y).abs() < 1e-6 && (p.length() - q.length()).abs() < 1e-5);
+/// ```
 pub fn twisted(rock: &[Triangle], radians_per_unit: f32) -> Vec<Triangle> {
     rock.iter()
         .map(|t| Triangle {

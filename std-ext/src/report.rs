@@ -299,6 +299,16 @@ pub fn run_with_meshes(
 /// The builders a report measures, by the names its builder table uses:
 /// every top-down preset, PLOC at radius 4 and the branch-and-bound
 /// insertion builder (shuffled).
+///
+/// ```
+/// use bvhkit_std::report::builder_candidates;
+/// let names: Vec<String> = builder_candidates().into_iter().map(|(n, _)| n).collect();
+/// assert_eq!(names[0], "sah");
+/// assert!(names.iter().any(|n| n == "ploc-r4") && names.iter().any(|n| n == "insert-bnb"));
+/// let tree = builder_candidates()[0].1.build::<bvhkit::Aabb>(&bvhkit_std::scene::rock(2, 1))?;
+/// assert_eq!(tree.view().primitive_count(), 320);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 pub fn builder_candidates() -> Vec<(String, Builder)> {
     let mut candidates: Vec<(String, Builder)> = PRESETS
         .iter()

@@ -3,6 +3,11 @@
 
 /// `YYYY-MM-DD HH:MM UTC · CPU model, N cores`, from the system clock and
 /// (on Linux) `/proc/cpuinfo`.
+///
+/// ```
+/// let stamp = bvhkit_std::stamp::now();
+/// assert!(stamp.contains(" UTC · ") && stamp.ends_with(" cores"));
+/// ```
 pub fn now() -> String {
     let t = time::OffsetDateTime::now_utc();
     format!(
