@@ -237,15 +237,7 @@ pub mod wrong {
                     .sum::<bvhkit::glam::DVec3>()
                     / points.len() as f64;
                 let c = mean.as_vec3();
-                let mut h = bvhkit::glam::DVec3::ZERO;
-                for p in points {
-                    let v = p.as_dvec3() - c.as_dvec3();
-                    h = h.max(bvhkit::glam::DVec3::new(
-                        ax[0].dot(v).abs(),
-                        ax[1].dot(v).abs(),
-                        ax[2].dot(v).abs(),
-                    ));
-                }
+                let h = reach(points, &ax, c);
                 Obb {
                     center: c,
                     axes,
@@ -275,11 +267,7 @@ pub mod wrong {
                 Obb {
                     center: from_mid(mid),
                     axes,
-                    half_extents: Vec3::new(
-                        bvhkit::round::up(h.x),
-                        bvhkit::round::up(h.y),
-                        bvhkit::round::up(h.z),
-                    ),
+                    half_extents: round_up(h),
                 }
             }
             // The centre in the axes' frame (the middle projections), not in the world.
@@ -288,25 +276,13 @@ pub mod wrong {
                 Obb {
                     center: mid.as_vec3(),
                     axes,
-                    half_extents: Vec3::new(
-                        bvhkit::round::up(h.x),
-                        bvhkit::round::up(h.y),
-                        bvhkit::round::up(h.z),
-                    ),
+                    half_extents: round_up(h),
                 }
             }
             // The whole projection range as the half extent: contains, twice too big.
             8 => {
                 let c = from_mid(mid);
-                let mut h = bvhkit::glam::DVec3::ZERO;
-                for p in points {
-                    let v = p.as_dvec3() - c.as_dvec3();
-                    h = h.max(bvhkit::glam::DVec3::new(
-                        ax[0].dot(v).abs(),
-                        ax[1].dot(v).abs(),
-                        ax[2].dot(v).abs(),
-                    ));
-                }
+                let h = reach(points, &ax, c);
                 Obb {
                     center: c,
                     axes,
@@ -315,5 +291,26 @@ pub mod wrong {
             }
             _ => Reference.fit_obb(points, axes),
         }
+    }
+
+    /// The farthest projection of `points` from `c` along each axis, in f64.
+    fn reach(points: &[Vec3], ax: &[bvhkit::glam::DVec3; 3], c: Vec3) -> bvhkit::glam::DVec3 {
+        points.iter().fold(bvhkit::glam::DVec3::ZERO, |h, p| {
+            let v = p.as_dvec3() - c.as_dvec3();
+            h.max(bvhkit::glam::DVec3::new(
+                ax[0].dot(v).abs(),
+                ax[1].dot(v).abs(),
+                ax[2].dot(v).abs(),
+            ))
+        })
+    }
+
+    /// Each component rounded up to an `f32` at or above it.
+    fn round_up(h: bvhkit::glam::DVec3) -> Vec3 {
+        Vec3::new(
+            bvhkit::round::up(h.x),
+            bvhkit::round::up(h.y),
+            bvhkit::round::up(h.z),
+        )
     }
 }
