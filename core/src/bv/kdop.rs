@@ -10,9 +10,13 @@
 //! * `K = 13`: all of them (26-DOP).
 //!
 //! Slab bounds are computed in `f64` and rounded outward. Volume and surface
-//! area are reported for the axis slabs only (the enclosing box): an upper bound
-//! that keeps those measures cheap; the cut corners make the true k-DOP smaller.
+//! area are the polytope's own (the intersection of the slabs, computed face
+//! by face in [`polytope`](super::polytope)), so a k-DOP measures smaller than
+//! its enclosing box wherever a diagonal plane cuts a corner or an edge off,
+//! and exactly as its box where none does. Builders that compare merges by
+//! area or volume and the "descend the larger volume" rule see those measures.
 
+use super::polytope::Planes;
 use super::{Aabb, Axes, BoundingVolume, PointSet};
 use crate::round;
 use glam::{DVec3, Vec3};
@@ -85,6 +89,65 @@ impl<const K: usize> Kdop<K> {
     fn dot64(i: usize, p: DVec3) -> f64 {
         let d = Self::direction(i);
         d[0] as f64 * p.x + d[1] as f64 * p.y + d[2] as f64 * p.z
+    }
+
+    /// The polytope's `(volume, area)` in units of its box's longest side
+    /// `s`, and `s`; `None` when the measures are the box's: no diagonal
+    /// plane cuts the box, or the box is empty, a point or not finite.
+    fn polytope(&self) -> Option<(f64, f64, f64)> {
+        let b = self.aabb();
+        if K == 3 || self.is_empty() || !(b.min.is_finite() && b.max.is_finite()) {
+            return None;
+        }
+        let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+        let s = (hi - lo).max_element();
+        if s <= 0.0 {
+            return None;
+        }
+        // Centre the box on the origin and make its longest side 1.
+        let (c, inv) = ((lo + hi) * 0.5, 1.0 / s);
+        let half = (hi - lo) * 0.5 * inv;
+        let mut planes = Planes::new();
+        for (axis, h) in [DVec3::X, DVec3::Y, DVec3::Z]
+            .into_iter()
+            .zip(half.to_array())
+        {
+            planes.push(axis, h);
+            planes.push(-axis, h);
+        }
+        let mut cuts = false;
+        for i in 3..K {
+            let d = Self::direction(i);
+            let d = DVec3::new(d[0] as f64, d[1] as f64, d[2] as f64);
+            let len = d.length();
+            let n = d / len;
+            // How far the box reaches along n: a plane at least this far out
+            // cuts nothing. A plane within 1e-6 of it (a few f32 roundings:
+            // the slabs of `from_aabb` touch the box's corners and edges,
+            // each rounded outward by an ulp) cuts off at most an edge
+            // prism of volume 1e-12 of the box's, below what f32 can
+            // show, so it counts as not cutting and the box's own f32
+            // measures stand, to the bit.
+            let reach = n.abs().dot(half) - 1e-6;
+            let centre = d.dot(c);
+            let upper = (self.max[i] as f64 - centre) * inv / len;
+            let lower = (centre - self.min[i] as f64) * inv / len;
+            if upper < reach {
+                planes.push(n, upper);
+                cuts = true;
+            }
+            if lower < reach {
+                planes.push(-n, lower);
+                cuts = true;
+            }
+        }
+        if !cuts {
+            return None;
+        }
+        let (v, a) = planes.measures();
+        // A flat slab: the two sides' terms cancel only up to rounding.
+        let flat = (0..K).any(|i| self.max[i] <= self.min[i]);
+        Some((if flat { 0.0 } else { v }, a, s))
     }
 
     /// Rounds an f64 interval outward to f32, with a pad for the f64 sum's own rounding.
@@ -192,20 +255,49 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
             || (0..K).all(|i| self.min[i] <= other.min[i] && other.max[i] <= self.max[i])
     }
 
+    /// The polytope's volume: at most the enclosing box's, equal to it when
+    /// no diagonal plane cuts the box.
+    ///
+    /// ```
+    /// use bvhkit::{BoundingVolume, Dop14};
+    /// use glam::Vec3;
+    /// // A tetrahedron at a corner of the unit cube: its 14-DOP is the
+    /// // tetrahedron itself (volume 1/6), its box the cube.
+    /// let dop = Dop14::fit(&[Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z]);
+    /// assert!((dop.volume() - 1.0 / 6.0).abs() < 1e-5);
+    /// assert!((dop.aabb().volume() - 1.0).abs() < 1e-5);
+    /// ```
     fn volume(&self) -> f32 {
-        BoundingVolume::volume(&self.aabb())
+        self.volume_scaled(1.0)
     }
 
+    /// The polytope's surface area: at most the enclosing box's.
     fn surface_area(&self) -> f32 {
-        BoundingVolume::surface_area(&self.aabb())
+        self.surface_area_scaled(1.0)
     }
 
     fn surface_area_scaled(&self, scale: f32) -> f32 {
-        self.aabb().surface_area_scaled(scale)
+        let boxed = self.aabb().surface_area_scaled(scale);
+        match self.polytope() {
+            // Computed in f64 with the lengths scaled first, so it overflows
+            // f32 only where the box's area does.
+            Some((_, a, s)) => {
+                let l = s * scale as f64;
+                ((a * l * l) as f32).min(boxed)
+            }
+            None => boxed,
+        }
     }
 
     fn volume_scaled(&self, scale: f32) -> f32 {
-        self.aabb().volume_scaled(scale)
+        let boxed = self.aabb().volume_scaled(scale);
+        match self.polytope() {
+            Some((v, _, s)) => {
+                let l = s * scale as f64;
+                ((v * l * l * l) as f32).min(boxed)
+            }
+            None => boxed,
+        }
     }
 
     fn aabb(&self) -> Aabb {
@@ -227,5 +319,107 @@ impl<const K: usize> BoundingVolume for Kdop<K> {
 
     fn is_empty(&self) -> bool {
         !(0..K).all(|i| self.min[i] <= self.max[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(got: f32, want: f64, what: &str) {
+        assert!(
+            (got as f64 - want).abs() <= 1e-5 * want.abs().max(1.0),
+            "{what}: got {got}, want {want}"
+        );
+    }
+
+    #[test]
+    fn a_box_measures_as_its_box() {
+        let b = Aabb::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(2.0, 4.0, 6.0));
+        for (v, a) in [
+            (
+                Dop14::from_aabb(&b).volume(),
+                Dop14::from_aabb(&b).surface_area(),
+            ),
+            (
+                Dop18::from_aabb(&b).volume(),
+                Dop18::from_aabb(&b).surface_area(),
+            ),
+            (
+                Dop26::from_aabb(&b).volume(),
+                Dop26::from_aabb(&b).surface_area(),
+            ),
+        ] {
+            // No diagonal plane cuts the box it was made from: the same f32 value.
+            assert_eq!(v, Dop26::from_aabb(&b).aabb().volume());
+            assert_eq!(a, Dop26::from_aabb(&b).aabb().surface_area());
+        }
+    }
+
+    #[test]
+    fn an_octahedron_is_its_own_14_dop() {
+        let pts = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
+        let d = Dop14::fit(&pts);
+        close(d.volume(), 4.0 / 3.0, "volume");
+        // Eight equilateral triangles of side sqrt(2).
+        close(d.surface_area(), 8.0 * 3f64.sqrt() / 2.0, "area");
+        // The 18-DOP's face diagonals (|x ± y| <= 1, ...) cut the box less
+        // than the body diagonals do: between the octahedron and the box.
+        let d18 = Dop18::fit(&pts);
+        assert!(d18.volume() > d.volume() && d18.volume() < 8.0);
+        // The 26-DOP has the 14-DOP's planes and more.
+        close(Dop26::fit(&pts).volume(), 4.0 / 3.0, "26-dop volume");
+    }
+
+    #[test]
+    fn a_triangle_is_flat_with_both_sides_of_area() {
+        let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        for (v, a) in [
+            (Dop14::fit(&tri).volume(), Dop14::fit(&tri).surface_area()),
+            (Dop18::fit(&tri).volume(), Dop18::fit(&tri).surface_area()),
+            (Dop26::fit(&tri).volume(), Dop26::fit(&tri).surface_area()),
+        ] {
+            // The z slab is padded by its rounding bound (4.4e-16), no more.
+            assert!(v < 1e-15, "{v}");
+            close(a, 1.0, "two sides of a triangle of area 1/2");
+        }
+        // A segment along a face diagonal, and a point: nothing at all.
+        let seg = [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)];
+        let d = Dop18::fit(&seg);
+        assert!(d.volume() < 1e-12 && d.surface_area() < 1e-5, "{d:?}");
+        let p = Dop26::fit(&[Vec3::splat(3.0)]);
+        // (a point's slabs are padded by an ulp: a speck, not nothing)
+        assert!(p.volume() < 1e-15 && p.surface_area() < 1e-10, "{p:?}");
+        let origin = Dop26::fit(&[Vec3::ZERO]);
+        assert!(origin.volume() == 0.0 && origin.surface_area() == 0.0);
+        assert_eq!(Dop26::EMPTY.volume(), 0.0);
+        assert_eq!(Dop26::EMPTY.surface_area(), 0.0);
+    }
+
+    #[test]
+    fn far_and_huge_tetrahedra_scale_as_they_should() {
+        let tet = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        for (offset, size) in [(1e5, 1.0), (0.0, 1e30), (1e30, 1e30), (0.0, 1e-20)] {
+            let pts = tet.map(|p| Vec3::splat(offset) + p * size);
+            let d = Dop14::fit(&pts);
+            let unit = 1.0 / size;
+            let (v, a) = (d.volume_scaled(unit), d.surface_area_scaled(unit));
+            assert!(v.is_finite() && a.is_finite() && v >= 0.0 && a >= 0.0);
+            // Far from the origin the slabs are padded by their rounding (a
+            // 1e5 offset in f32 is 1/128 units); the shape stays within it.
+            let tol = if offset == 1e5 { 0.05 } else { 1e-4 };
+            assert!((v as f64 - 1.0 / 6.0).abs() < tol, "{offset} {size}: {v}");
+            let area = 1.5 + 3f64.sqrt() / 2.0;
+            assert!((a as f64 - area).abs() < 6.0 * tol, "{offset} {size}: {a}");
+            assert!(v <= d.aabb().volume_scaled(unit) && a <= d.aabb().surface_area_scaled(unit));
+        }
+        // Unscaled, a 1e30 tetrahedron overflows exactly as its box does.
+        let huge = Dop14::fit(&tet.map(|p| p * 1e30));
+        assert_eq!(huge.volume(), f32::INFINITY);
+        assert_eq!(huge.aabb().volume(), f32::INFINITY);
+        assert!(
+            huge.surface_area() == f32::INFINITY
+                || huge.surface_area() <= huge.aabb().surface_area()
+        );
     }
 }

@@ -22,6 +22,8 @@ mod eigen;
 mod kdop;
 #[cfg(feature = "obb")]
 mod obb;
+#[cfg(feature = "kdop")]
+mod polytope;
 #[cfg(feature = "sphere")]
 mod sphere;
 
@@ -183,9 +185,9 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     fn contains_aabb(&self, aabb: &Aabb) -> bool {
         (0..8).all(|i| self.contains_point(aabb.corner(i)))
     }
-    /// Volume (the k-DOP reports an upper bound, see its docs).
+    /// Volume.
     fn volume(&self) -> f32;
-    /// Surface area (the k-DOP reports an upper bound, see its docs).
+    /// Surface area.
     fn surface_area(&self) -> f32;
     /// [`surface_area`](Self::surface_area) of the volume with every length
     /// multiplied by `scale`. Bottom-up builders compare merges with the

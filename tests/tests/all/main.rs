@@ -13,6 +13,7 @@ mod empty;
 mod equivalence;
 mod fits;
 mod insertion;
+mod kdop_measures;
 mod layouts;
 mod measures;
 mod narrow;
