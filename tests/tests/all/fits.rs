@@ -62,10 +62,24 @@ proptest! {
         all_inside(&Sphere::ritter_refined(pts.as_slice(), 8), &pts)?;
         all_inside(&Sphere::welzl(pts.as_slice()), &pts)?;
         all_inside(&Obb::pca(pts.as_slice()), &pts)?;
+        all_inside(&Obb::dito(pts.as_slice()), &pts)?;
         all_inside(&Kdop::<3>::fit(pts.as_slice()), &pts)?;
         all_inside(&Dop14::fit(pts.as_slice()), &pts)?;
         all_inside(&Dop18::fit(pts.as_slice()), &pts)?;
         all_inside(&Dop26::fit(pts.as_slice()), &pts)?;
+    }
+
+    /// The OBB fits on huge (1e30) sets: every point inside, no overflow
+    /// to an infinite or NaN box; DiTO no looser than the axis-aligned box.
+    #[test]
+    fn obb_fits_contain_huge_point_sets(pts in points(), scale in prop_oneof![Just(1e30f32), Just(1e-30f32)]) {
+        let pts: Vec<Vec3> = pts.iter().map(|p| *p * scale).collect();
+        for obb in [Obb::pca(pts.as_slice()), Obb::dito(pts.as_slice())] {
+            all_inside(&obb, &pts)?;
+            prop_assert!(obb.half_extents.is_finite() && obb.center.is_finite(), "{obb:?}");
+        }
+        let (d, b) = (Obb::dito(pts.as_slice()), Aabb::fit(pts.as_slice()));
+        prop_assert!(d.volume() <= b.volume() * 1.001 || d.volume() <= f32::MIN_POSITIVE, "{d:?} {b:?}");
     }
 
     /// Welzl is minimal: never larger than Ritter, and no sphere through any 2 or 3
