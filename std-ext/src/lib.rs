@@ -10,6 +10,7 @@ pub mod builders;
 pub mod collide;
 pub mod cost;
 pub mod cost_fit;
+pub mod hull;
 pub mod layouts;
 pub mod mesh;
 pub mod motion;

@@ -155,6 +155,10 @@ enum Command {
         /// itself. `scripts/fetch-meshes` fetches some into data/meshes.
         #[arg(long)]
         mesh: Vec<PathBuf>,
+        /// Only fit the volumes (seconds instead of minutes) and print the
+        /// fit table; no files are written.
+        #[arg(long)]
+        fits_only: bool,
     },
     /// Advise a builder, bounding volume, tree representation and traversal
     /// for a scene and workload, and say why. The advice comes from cheap
@@ -389,6 +393,7 @@ fn main() -> ExitCode {
             runs,
             json,
             mesh,
+            fits_only,
         } => {
             let bar = spinner("loading meshes");
             let mut meshes = Vec::new();
@@ -407,6 +412,21 @@ fn main() -> ExitCode {
                         return ExitCode::FAILURE;
                     }
                 }
+            }
+            if fits_only {
+                let fits =
+                    bvhkit_std::report::run_fits(subdivisions, runs as usize, &meshes, |what| {
+                        bar.set_message(what.to_string())
+                    });
+                bar.finish_and_clear();
+                if json {
+                    if !print_json(&fits) {
+                        return ExitCode::FAILURE;
+                    }
+                } else {
+                    print!("{}", bvhkit_std::report::render_fits(&fits));
+                }
+                return ExitCode::SUCCESS;
             }
             let report =
                 bvhkit_std::report::run_with_meshes(subdivisions, runs as usize, &meshes, |what| {
