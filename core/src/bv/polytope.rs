@@ -129,13 +129,8 @@ fn clip(
     offset: f64,
     out: &mut [DVec3; MAX_VERTICES],
 ) -> Option<usize> {
-    let mut dist = [0.0; MAX_VERTICES];
-    let mut all_in = true;
-    for (d, p) in dist.iter_mut().zip(poly) {
-        *d = normal.dot(*p) - offset;
-        all_in &= *d <= EPS;
-    }
-    if all_in {
+    // Most planes meet only the faces near them: stop at the first vertex outside.
+    if poly.iter().all(|p| normal.dot(*p) - offset <= EPS) {
         return None;
     }
     let mut m = 0;
@@ -148,9 +143,11 @@ fn clip(
             m += 1;
         }
     };
+    let mut dp = normal.dot(poly[0]) - offset;
     for i in 0..poly.len() {
         let j = if i + 1 == poly.len() { 0 } else { i + 1 };
-        let (p, q, dp, dq) = (poly[i], poly[j], dist[i], dist[j]);
+        let (p, q) = (poly[i], poly[j]);
+        let dq = normal.dot(q) - offset;
         let (p_in, q_in) = (dp <= EPS, dq <= EPS);
         if p_in {
             push(p);
@@ -161,6 +158,7 @@ fn clip(
             let t = (dp / (dp - dq)).clamp(0.0, 1.0);
             push(p + (q - p) * t);
         }
+        dp = dq;
     }
     Some(m)
 }
