@@ -541,3 +541,46 @@ fn sat(a: &Obb, b: &Obb) -> bool {
     }
     true
 }
+
+#[cfg(test)]
+mod dito_tests {
+    use super::*;
+
+    /// DiTO contains every point and is never looser than the axis-aligned
+    /// OBB it falls back to, also at 1e35 (where the centre's rounding
+    /// costs an ulp of 8e27) and on flat and single-point sets.
+    #[test]
+    fn dito_contains_and_is_no_looser_than_its_fallback() {
+        let sets: [&[Vec3]; 5] = [
+            &[
+                Vec3::new(1.0000001e35, -5e34, 2.5e34),
+                Vec3::new(1e35, -4.999817e34, 2.5000115e34),
+            ],
+            &[Vec3::ZERO, Vec3::new(3.6271255e30, -3.6384125e30, 0.0)],
+            &[Vec3::splat(7.0)],
+            &[
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.3, 0.9, 0.0),
+            ],
+            &[Vec3::ZERO, Vec3::ONE, Vec3::splat(2.0), Vec3::splat(3.5)],
+        ];
+        for pts in sets {
+            let d = Obb::dito(pts);
+            let a = Obb::fit_with_axes(pts, [Vec3::X, Vec3::Y, Vec3::Z]);
+            assert!(pts.iter().all(|&p| d.contains_point(p)), "{d:?}");
+            let ext = pts
+                .iter()
+                .fold(Aabb::EMPTY, |b, &p| b.union(&Aabb::from_point(p)));
+            let unit = 1.0 / ext.extent().max_element().max(f32::MIN_POSITIVE);
+            let (dv, av) = (d.volume_scaled(unit), a.volume_scaled(unit));
+            let (da, aa) = (d.surface_area_scaled(unit), a.surface_area_scaled(unit));
+            assert!(
+                dv <= av * 1.001 + 1e-6 || da <= aa * 1.001 + 1e-6,
+                "{d:?} looser than {a:?}"
+            );
+        }
+    }
+}
