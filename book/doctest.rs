@@ -337,6 +337,11 @@ mod tests {
     fn the_performance_chapter_reads_the_recorded_run_right() {
         let run = recorded_bench();
         let num = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
+        assert!(
+            rows(&run, "fits", "rock")[0]["hull_ratio"].is_number(),
+            "the recorded run has no hull ratios (it predates exact k-DOP volumes): run \
+             scripts/book-measure and read the performance chapter against it"
+        );
         // Fits: nothing convex is smaller than the hull; on every mesh the
         // 26-DOP is the tightest volume and every k-DOP is tighter than the
         // box; Welzl's is the tightest sphere; the box is the fastest fit on
