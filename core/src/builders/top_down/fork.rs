@@ -510,6 +510,16 @@ mod tests {
     #[cfg(feature = "strategies")]
     #[test]
     fn forked_build_reports_what_the_sequential_one_does() {
+        // Random candidates are drawn per node: seeded by the node's number
+        // they differed between the two builds (found by a property test).
+        let random = TopDown {
+            partition: crate::Partition::Volume,
+            axis: crate::AxisChoice::X,
+            split: crate::SplitPoint::RandomCentroids { count: 4, seed: 7 },
+            ..TopDown::sah()
+        }
+        .with_max_leaf_size(1);
+        assert_eq!(forked_equals_sequential::<crate::Sphere>(random), 5 * 6 * 2);
         let mut shallow = TopDown::median();
         shallow.stop.max_depth = 6;
         let all = scene(11);
