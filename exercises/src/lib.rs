@@ -491,6 +491,27 @@ pub trait Exercises {
         nodes: &mut [Node<Aabb>],
         indices: &mut [u32],
     ) -> Option<usize>;
+
+    /// Exercise 39a: a subtree built on its own, moved into the whole tree
+    /// (the second pass of the parallel build). `piece` is in the canonical
+    /// layout of its own: its root is `piece[0]`, an internal node's
+    /// children are `piece[first]` and `piece[first + 1]`, a leaf holds the
+    /// piece's own primitives `first..first + count`. In the whole tree the
+    /// root goes to a slot elsewhere (its parent's child slot), the other
+    /// nodes go in order to nodes `base`, `base + 1`, ..., and the piece's
+    /// primitives start at entry `start` of the index array. Return the
+    /// piece's nodes as the whole tree holds them, the root first: links
+    /// and ranges moved, volumes and counts unchanged.
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>>;
+
+    /// Exercise 39b: where two halves go. A split node's children take
+    /// nodes `pair` and `pair + 1`; below them come the other nodes of one
+    /// half, then those of the other: the half over fewer primitives
+    /// first, the left one on a tie (the order the sequential builder
+    /// finishes them). `left` and `right` are each half's (primitives,
+    /// nodes), nodes counting the half's own root. Return the node where
+    /// each half's other nodes start, `(left, right)`.
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32);
 }
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and

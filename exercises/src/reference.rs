@@ -817,4 +817,29 @@ impl Exercises for Reference {
         }
         Some(used)
     }
+
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        // The library does this in `place` in core/src/builders/top_down/fork.rs.
+        // Node k >= 1 of the piece lands on node base + k - 1.
+        piece
+            .iter()
+            .map(|n| Node {
+                first: if n.is_leaf() {
+                    n.first + start
+                } else {
+                    base + n.first - 1
+                },
+                ..*n
+            })
+            .collect()
+    }
+
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        // Each half keeps its own root in the pair, so it has nodes - 1 below.
+        if left.0 <= right.0 {
+            (pair + 2, pair + 2 + (left.1 - 1))
+        } else {
+            (pair + 2 + (right.1 - 1), pair + 2)
+        }
+    }
 }

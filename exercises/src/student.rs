@@ -447,4 +447,21 @@ impl Exercises for Student {
         let _ = (boxes, max_leaf, nodes, indices);
         todo!("exercise 35")
     }
+
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        // Hint: node k of the piece (k >= 1) lands on node base + k - 1, so
+        // an internal link `first` becomes base + first - 1; a leaf's range
+        // moves with the primitives, by `start`. The root is element 0 of
+        // your answer like any other node.
+        let _ = (piece, start, base);
+        todo!("exercise 39a")
+    }
+
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        // Hint: each half's root is already in the pair, so a half of `m`
+        // nodes puts `m - 1` below it. Compare the primitive counts, not
+        // the node counts.
+        let _ = (pair, left, right);
+        todo!("exercise 39b")
+    }
 }

@@ -41,6 +41,7 @@ mod ex32_insertion_descent;
 mod ex33_ray_best_first;
 mod ex34_wide_nodes;
 mod ex35_top_down_build;
+mod ex39_relocate_pieces;
 #[cfg(test)]
 mod wrong;
 
@@ -69,7 +70,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 35] = [
+pub const EXERCISES: [(u32, &str); 36] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -111,6 +112,7 @@ pub const EXERCISES: [(u32, &str); 35] = [
     (33, "best-first search for a ray: the closest hit"),
     (34, "tree degree: collapsing into 4-wide nodes"),
     (35, "a whole top-down build, into the caller's arrays"),
+    (39, "the parallel build: moving pieces into place"),
 ];
 
 /// A score for one exercise.
@@ -166,6 +168,7 @@ pub fn checks() -> Vec<Check> {
         ex33_ray_best_first::checks(),
         ex34_wide_nodes::checks(),
         ex35_top_down_build::checks(),
+        ex39_relocate_pieces::checks(),
     ]
     .concat()
 }

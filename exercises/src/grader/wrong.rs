@@ -39,6 +39,7 @@ use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
 use super::ex34_wide_nodes;
 use super::ex35_top_down_build;
+use super::ex39_relocate_pieces;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -90,6 +91,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (33, ex33_ray_best_first::wrong::COUNT),
         (34, ex34_wide_nodes::wrong::COUNT),
         (35, ex35_top_down_build::wrong::COUNT),
+        (39, ex39_relocate_pieces::wrong::COUNT),
     ]
 }
 
@@ -283,5 +285,11 @@ impl Exercises for Wrong {
         indices: &mut [u32],
     ) -> Option<usize> {
         ex35_top_down_build::wrong::top_down_build(self.k(35), boxes, max_leaf, nodes, indices)
+    }
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        ex39_relocate_pieces::wrong::relocate_piece(self.k(39), piece, start, base)
+    }
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        ex39_relocate_pieces::wrong::piece_bases(self.k(39), pair, left, right)
     }
 }
