@@ -349,3 +349,148 @@ impl Hierarchy for QuantizedWide<'_> {
         core::mem::size_of_val(self.records) + self.leaves.bytes()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tree::Node;
+    use crate::Query;
+
+    /// Three points on a line, `x = 0, 1, 2`; node 1 holds points 0 and 2
+    /// when `gap`, so its subtree's index entries are not one run.
+    fn tree<'a>(nodes: &'a mut [Node<Aabb>; 5], gap: bool) -> Bvh<'a, Aabb> {
+        let leaf = |first: u32, x: f32| Node {
+            bv: Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x, 0.0, 0.0)),
+            first,
+            count: 1,
+        };
+        let inner = |first: u32, lo: f32, hi: f32| Node {
+            bv: Aabb::new(Vec3::new(lo, 0.0, 0.0), Vec3::new(hi, 0.0, 0.0)),
+            first,
+            count: 0,
+        };
+        // Index entries [0, 1, 2] name points 0, 1, 2.
+        *nodes = if gap {
+            // root -> (node 1 = {0, 2}, leaf {1}); node 1's entries 0 and 2.
+            [
+                inner(1, 0.0, 2.0),
+                inner(3, 0.0, 2.0),
+                leaf(1, 1.0),
+                leaf(0, 0.0),
+                leaf(2, 2.0),
+            ]
+        } else {
+            // root -> (node 1 = {0, 1}, leaf {2}); node 1's entries 0 and 1.
+            [
+                inner(1, 0.0, 2.0),
+                inner(3, 0.0, 1.0),
+                leaf(2, 2.0),
+                leaf(0, 0.0),
+                leaf(1, 1.0),
+            ]
+        };
+        Bvh::from_raw_parts(&nodes[..], &[0, 1, 2], 2)
+    }
+
+    /// The primitive counts of the leaves, in slot order.
+    fn leaf_sizes(q: &QuantizedWide<'_>) -> [usize; 3] {
+        let mut sizes = [0; 3];
+        let mut k = 0;
+        for node in 0..4 * q.records().len() as u32 {
+            if q.records()[(node / 4) as usize].count[(node % 4) as usize] == UNUSED {
+                continue;
+            }
+            if let Content::Leaf(ids) = q.content(node) {
+                sizes[k] = ids.len();
+                k += 1;
+            }
+        }
+        sizes
+    }
+
+    const POINTS: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::new(2.0, 0.0, 0.0)];
+
+    #[test]
+    fn a_subtree_whose_entries_are_not_one_run_stays_a_record() {
+        let mut nodes = [Node::EMPTY; 5];
+        let t = tree(&mut nodes, true);
+        assert_eq!(super::super::run(&t, 1, 2), None);
+        assert_eq!(super::super::run(&t, 2, 2), Some((1, 1))); // a leaf, always
+                                                               // Nothing merged: the root's record takes node 1's children up.
+        assert_eq!(QuantizedWide::records_needed_merged(&t, 2), Ok(2));
+        let mut recs = [QuantNode::EMPTY; 2];
+        let q = QuantizedWide::from_bvh_merged(&t, 2, &mut recs).unwrap();
+        assert_eq!(leaf_sizes(&q), [1, 1, 1]);
+        for (k, want) in [(0.0f32, 1), (1.0, 1), (2.0, 1)] {
+            let probe = Aabb::new(Vec3::new(k, -1.0, -1.0), Vec3::new(k, 1.0, 1.0));
+            let mut found = [false; 3];
+            let n = q.overlapping(&POINTS, &probe, |i| found[i as usize] = true);
+            assert_eq!(n, Ok(want));
+            assert!(found[k as usize]);
+        }
+    }
+
+    #[test]
+    fn a_run_of_at_most_the_limit_becomes_one_leaf_slot() {
+        let mut nodes = [Node::EMPTY; 5];
+        let t = tree(&mut nodes, false);
+        assert_eq!(super::super::run(&t, 1, 2), Some((0, 2)));
+        assert_eq!(super::super::run(&t, 1, 1), None); // over the limit
+        assert_eq!(super::super::run(&t, 0, 2), None); // the root holds 3
+                                                       // Node 1 merged into one leaf slot beside leaf {2}.
+        let mut recs = [QuantNode::EMPTY; 2];
+        let q = QuantizedWide::from_bvh_merged(&t, 2, &mut recs).unwrap();
+        assert_eq!(leaf_sizes(&q), [2, 1, 0]);
+        assert_eq!(q.content(4), Content::Leaf(&[0, 1]));
+        let q = QuantizedWide::from_bvh_merged(&t, 1, &mut recs).unwrap();
+        assert_eq!(leaf_sizes(&q), [1, 1, 1]);
+        // A limit of 3 takes the whole tree into the header's one slot.
+        assert_eq!(QuantizedWide::records_needed_merged(&t, 3), Ok(1));
+        let mut recs = [QuantNode::EMPTY; 1];
+        let q = QuantizedWide::from_bvh_merged(&t, 3, &mut recs).unwrap();
+        assert_eq!(q.content(0), Content::Leaf(&[0, 1, 2]));
+        assert_eq!((q.depth(), q.node_count()), (0, 1));
+        let probe = Aabb::new(Vec3::splat(-1.0), Vec3::splat(3.0));
+        assert_eq!(q.overlapping(&POINTS, &probe, |_| {}), Ok(3));
+    }
+
+    #[test]
+    fn merge_limits_past_the_walk_are_refused() {
+        let mut nodes = [Node::EMPTY; 5];
+        let t = tree(&mut nodes, false);
+        let most = QuantizedWide::MAX_MERGED_LEAF;
+        assert!(QuantizedWide::records_needed_merged(&t, most).is_ok());
+        let err = QuantizedWide::records_needed_merged(&t, most + 1);
+        assert!(matches!(err, Err(Error::FieldOverflow { max: 64, .. })));
+    }
+
+    #[test]
+    fn encoded_boxes_contain_the_exact_ones_at_the_edges() {
+        // A zero-size box, a box spanning the whole frame, boxes at 1e30 and
+        // at denormal scale: each decoded box contains its exact box.
+        let cases: [&[Aabb]; 3] = [
+            &[
+                Aabb::new(Vec3::ONE, Vec3::ONE),
+                Aabb::new(Vec3::ZERO, Vec3::splat(3.0)),
+            ],
+            &[
+                Aabb::new(Vec3::splat(-1.0e30), Vec3::splat(-0.5e30)),
+                Aabb::new(Vec3::splat(0.25e30), Vec3::splat(1.0e30)),
+            ],
+            &[
+                Aabb::new(Vec3::splat(1.0e-39), Vec3::splat(2.0e-39)),
+                Aabb::new(Vec3::splat(3.0e-39), Vec3::splat(3.0e-39)),
+            ],
+        ];
+        for boxes in cases {
+            let r = QuantNode::encode(boxes);
+            for (k, b) in boxes.iter().enumerate() {
+                assert!(
+                    r.slot_box(k).contains_aabb(b),
+                    "{b:?} -> {:?}",
+                    r.slot_box(k)
+                );
+            }
+        }
+    }
+}
