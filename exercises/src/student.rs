@@ -447,4 +447,14 @@ impl Exercises for Student {
         let _ = (boxes, max_leaf, nodes, indices);
         todo!("exercise 35")
     }
+
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        // Hint: a leaf answers at once. Otherwise walk the subtree (a stack
+        // or recursion), summing the leaves' counts and keeping the smallest
+        // `first` and the largest `first + count`; stop early once the sum
+        // passes `merge`. The leaves' entries never overlap, so they are one
+        // run exactly when largest end - smallest first == the sum.
+        let _ = (tree, node, merge);
+        todo!("exercise 37")
+    }
 }

@@ -41,6 +41,7 @@ mod ex32_insertion_descent;
 mod ex33_ray_best_first;
 mod ex34_wide_nodes;
 mod ex35_top_down_build;
+mod ex37_merged_leaves;
 #[cfg(test)]
 mod wrong;
 
@@ -69,7 +70,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 35] = [
+pub const EXERCISES: [(u32, &str); 36] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -111,6 +112,10 @@ pub const EXERCISES: [(u32, &str); 35] = [
     (33, "best-first search for a ray: the closest hit"),
     (34, "tree degree: collapsing into 4-wide nodes"),
     (35, "a whole top-down build, into the caller's arrays"),
+    (
+        37,
+        "fuller quantized records: a small subtree as one leaf slot",
+    ),
 ];
 
 /// A score for one exercise.
@@ -166,6 +171,7 @@ pub fn checks() -> Vec<Check> {
         ex33_ray_best_first::checks(),
         ex34_wide_nodes::checks(),
         ex35_top_down_build::checks(),
+        ex37_merged_leaves::checks(),
     ]
     .concat()
 }
@@ -399,7 +405,7 @@ mod tests {
             "{:?}",
             start.elapsed()
         );
-        assert_eq!(reported, (1..=EXERCISES.len() as u32).collect::<Vec<_>>());
+        assert_eq!(reported, EXERCISES.iter().map(|e| e.0).collect::<Vec<_>>());
         for s in &scores {
             if s.exercise == 8 {
                 assert_eq!(s.earned, 0, "{s:?}");

@@ -39,6 +39,7 @@ use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
 use super::ex34_wide_nodes;
 use super::ex35_top_down_build;
+use super::ex37_merged_leaves;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -90,6 +91,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (33, ex33_ray_best_first::wrong::COUNT),
         (34, ex34_wide_nodes::wrong::COUNT),
         (35, ex35_top_down_build::wrong::COUNT),
+        (37, ex37_merged_leaves::wrong::COUNT),
     ]
 }
 
@@ -283,5 +285,8 @@ impl Exercises for Wrong {
         indices: &mut [u32],
     ) -> Option<usize> {
         ex35_top_down_build::wrong::top_down_build(self.k(35), boxes, max_leaf, nodes, indices)
+    }
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        ex37_merged_leaves::wrong::merged_run(self.k(37), tree, node, merge)
     }
 }
