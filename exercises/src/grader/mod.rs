@@ -385,7 +385,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 390/390 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 400/400 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the
