@@ -58,9 +58,11 @@ pub fn checks() -> Vec<Check> {
     ]
 }
 
-/// Three-leaf trees whose node 1 holds two leaves of one entry each:
-/// `(what, nodes, indices, node 1's run under merge 8)`.
-fn hand_trees() -> Vec<(&'static str, Vec<Node<Aabb>>, Vec<u32>, Option<(u32, u32)>)> {
+/// A tree written by hand: `(what, nodes, indices, node 1's run under merge 8)`.
+type HandTree = (&'static str, Vec<Node<Aabb>>, Vec<u32>, Option<(u32, u32)>);
+
+/// Three-leaf trees whose node 1 holds two leaves of one entry each.
+fn hand_trees() -> Vec<HandTree> {
     let leaf = |first: u32| Node {
         first,
         count: 1,
