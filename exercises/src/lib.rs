@@ -492,6 +492,18 @@ pub trait Exercises {
         indices: &mut [u32],
     ) -> Option<usize>;
 
+    /// Exercise 37: fuller quantized records. `bvhkit::layout::QuantizedWide`
+    /// stores a whole small subtree as one leaf slot, naming its primitives
+    /// as one run of the index array, `(first, count)`: the entries
+    /// `tree.indices()[first..first + count]`. Return that run for `node`:
+    /// - a leaf: its own `(first, count)`, whatever `merge`;
+    /// - an internal node: `Some` when the leaves under it hold at most
+    ///   `merge` primitives in all and their entries are one contiguous run
+    ///   (no gap; `first` is the smallest entry), `None` otherwise. A tree
+    ///   from a top-down builder never has a gap; one written by hand (or by
+    ///   another builder) may. `merge = 0` merges no internal node.
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)>;
+
     /// Exercise 39a: a subtree built on its own, moved into the whole tree
     /// (the second pass of the parallel build). `piece` is in the canonical
     /// layout of its own: its root is `piece[0]`, an internal node's

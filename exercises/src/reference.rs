@@ -818,6 +818,32 @@ impl Exercises for Reference {
         Some(used)
     }
 
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        // The library's version is `run` in core/src/layout/mod.rs.
+        let nodes = tree.nodes();
+        let n = nodes[node as usize];
+        if n.is_leaf() {
+            return Some((n.first, n.count));
+        }
+        let (mut lo, mut hi, mut count) = (u32::MAX, 0u32, 0u64);
+        let mut stack = vec![node];
+        while let Some(i) = stack.pop() {
+            let n = nodes[i as usize];
+            match n.children() {
+                Some((l, r)) => stack.extend([l, r]),
+                None => {
+                    count += n.count as u64;
+                    if count > merge as u64 {
+                        return None;
+                    }
+                    lo = lo.min(n.first);
+                    hi = hi.max(n.first + n.count);
+                }
+            }
+        }
+        (u64::from(hi - lo) == count).then_some((lo, count as u32))
+    }
+
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
         // The library does this in `place` in core/src/builders/top_down/fork.rs.
         // Node k >= 1 of the piece lands on node base + k - 1.

@@ -448,6 +448,16 @@ impl Exercises for Student {
         todo!("exercise 35")
     }
 
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        // Hint: a leaf answers at once. Otherwise walk the subtree (a stack
+        // or recursion), summing the leaves' counts and keeping the smallest
+        // `first` and the largest `first + count`; stop early once the sum
+        // passes `merge`. The leaves' entries never overlap, so they are one
+        // run exactly when largest end - smallest first == the sum.
+        let _ = (tree, node, merge);
+        todo!("exercise 37")
+    }
+
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
         // Hint: node k of the piece (k >= 1) lands on node base + k - 1, so
         // an internal link `first` becomes base + first - 1; a leaf's range

@@ -39,6 +39,7 @@ use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
 use super::ex34_wide_nodes;
 use super::ex35_top_down_build;
+use super::ex37_merged_leaves;
 use super::ex39_relocate_pieces;
 use bvhkit::builders::DynNode;
 
@@ -91,6 +92,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (33, ex33_ray_best_first::wrong::COUNT),
         (34, ex34_wide_nodes::wrong::COUNT),
         (35, ex35_top_down_build::wrong::COUNT),
+        (37, ex37_merged_leaves::wrong::COUNT),
         (39, ex39_relocate_pieces::wrong::COUNT),
     ]
 }
@@ -285,6 +287,9 @@ impl Exercises for Wrong {
         indices: &mut [u32],
     ) -> Option<usize> {
         ex35_top_down_build::wrong::top_down_build(self.k(35), boxes, max_leaf, nodes, indices)
+    }
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        ex37_merged_leaves::wrong::merged_run(self.k(37), tree, node, merge)
     }
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
         ex39_relocate_pieces::wrong::relocate_piece(self.k(39), piece, start, base)
