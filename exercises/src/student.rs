@@ -447,4 +447,20 @@ impl Exercises for Student {
         let _ = (boxes, max_leaf, nodes, indices);
         todo!("exercise 35")
     }
+
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        // Hint: walk in preorder with a stack of (node, record waiting for
+        // it as its right child). When a node gets its record, fill in the
+        // waiting parent's entry: you learn how far the right child is only
+        // when you reach it. Sort the far table at the end.
+        let _ = (tree, reach);
+        todo!("exercise 36a")
+    }
+
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        // Hint: `slice::binary_search_by_key` finds the entry whose first
+        // element is `record`.
+        let _ = (links, far, record);
+        todo!("exercise 36b")
+    }
 }
