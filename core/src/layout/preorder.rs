@@ -117,7 +117,7 @@ impl<B: BoundingVolume> PreNode<B, u32> {
     /// Index of the right child (internal nodes only). With `u16` links a
     /// record alone cannot say it: ask [`Preorder::right`].
     pub fn right(&self) -> Option<usize> {
-        self.has_left_child().then(|| self.link as usize)
+        self.has_left_child().then_some(self.link as usize)
     }
 }
 
