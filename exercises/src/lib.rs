@@ -492,6 +492,26 @@ pub trait Exercises {
         indices: &mut [u32],
     ) -> Option<usize>;
 
+    /// Exercise 36a: 16-bit right links with an escape. Lay `tree` out in
+    /// preorder (the root, its whole left subtree, then its right subtree;
+    /// the left child is `Node::children`'s first) and return one `u16`
+    /// per record, in that order, and the far table:
+    /// - a leaf's entry is `0`;
+    /// - an internal node at record `i` whose right child lands at record
+    ///   `j` stores the offset `j - i` when it is at most `reach`;
+    /// - a larger offset stores [`ESCAPE`] (65 535) instead, and `(i, j)`
+    ///   goes into the far table.
+    ///
+    /// Return the far table sorted by record. `reach` is at most 65 534 (so
+    /// a stored offset is never the escape). An empty tree: two empty lists.
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>);
+
+    /// Exercise 36b: the right child's record of the internal node at
+    /// `record`, from 36a's `links` and sorted `far` table: the record plus
+    /// its offset, or, when its entry is [`ESCAPE`], the far table's entry
+    /// for `record` (found by binary search).
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize;
+
     /// Exercise 37: fuller quantized records. `bvhkit::layout::QuantizedWide`
     /// stores a whole small subtree as one leaf slot, naming its primitives
     /// as one run of the index array, `(first, count)`: the entries
@@ -525,6 +545,10 @@ pub trait Exercises {
     /// each half's other nodes start, `(left, right)`.
     fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32);
 }
+
+/// The escape value of exercise 36: "the link is in the far table" (the
+/// library's [`bvhkit::layout::ESCAPE`]).
+pub const ESCAPE: u16 = u16::MAX;
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and
 /// more).

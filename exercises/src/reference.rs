@@ -818,6 +818,46 @@ impl Exercises for Reference {
         Some(used)
     }
 
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        let nodes = tree.nodes();
+        let mut links: Vec<u16> = Vec::with_capacity(nodes.len());
+        let mut far = Vec::new();
+        // (node, the record waiting for it as its right child).
+        let mut stack = vec![(0u32, None::<usize>)];
+        if nodes.is_empty() {
+            stack.clear();
+        }
+        while let Some((n, parent)) = stack.pop() {
+            let record = links.len();
+            if let Some(p) = parent {
+                let offset = record - p;
+                links[p] = if offset <= reach as usize {
+                    offset as u16
+                } else {
+                    far.push((p as u32, record as u32));
+                    crate::ESCAPE
+                };
+            }
+            links.push(0);
+            if let Some((l, r)) = nodes[n as usize].children() {
+                stack.push((r, Some(record)));
+                stack.push((l, None));
+            }
+        }
+        // A right link is found after the links of its whole left subtree.
+        far.sort_unstable();
+        (links, far)
+    }
+
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        match links[record] {
+            crate::ESCAPE => far
+                .binary_search_by_key(&(record as u32), |&(r, _)| r)
+                .map_or(usize::MAX, |k| far[k].1 as usize),
+            offset => record + offset as usize,
+        }
+    }
+
     fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
         // The library's version is `run` in core/src/layout/mod.rs.
         let nodes = tree.nodes();

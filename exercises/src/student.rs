@@ -448,6 +448,21 @@ impl Exercises for Student {
         todo!("exercise 35")
     }
 
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        // Hint: walk in preorder with a stack of (node, record waiting for
+        // it as its right child). When a node gets its record, fill in the
+        // waiting parent's entry: you learn how far the right child is only
+        // when you reach it. Sort the far table at the end.
+        let _ = (tree, reach);
+        todo!("exercise 36a")
+    }
+
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        // Hint: `slice::binary_search_by_key` finds the entry whose first
+        // element is `record`.
+        let _ = (links, far, record);
+        todo!("exercise 36b")
+    }
     fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
         // Hint: a leaf answers at once. Otherwise walk the subtree (a stack
         // or recursion), summing the leaves' counts and keeping the smallest

@@ -12,7 +12,7 @@
 //! | canonical [`Bvh`] | [`Node`] | 32 | `first`, `first + 1` | one index names both children |
 //! | [`Implicit`] | [`Slot`] | 28 | `2i + 1`, `2i + 2` | no child links at all (if balanced) |
 //! | [`Preorder`] `u32` | [`PreNode`] | 32 | `i + 1` and a stored right index | left link; left child shares the cache line |
-//! | [`Preorder`] `u16` | [`PreNode`] | 28 | the same, 16-bit | half of each index |
+//! | [`Preorder`] `u16` | [`PreNode`] | 28 | the same, as an offset from the record (an escape to a [`FarLink`] when too far) | half of each index, for any tree size |
 //! | [`TriNodes`] | [`TriNode`] | 92 (3 nodes) | two links per child | links of every other level |
 //! | [`Wide`] | [`WideNode`] | 128 (4 children) | one link per child | 3 of 4 levels; one fetch tests 4 boxes |
 //! | [`QuantizedWide`] | [`QuantNode`] | 64 (4 children) | one link per child | 8-bit boxes relative to the parent; small subtrees merged into one leaf slot, so fewer records |
@@ -30,7 +30,7 @@ mod trinode;
 mod wide;
 
 pub use implicit::{Implicit, Slot};
-pub use preorder::{Offset, PreNode, Preorder};
+pub use preorder::{FarLink, Offset, PreNode, Preorder, ESCAPE, LEAF_BIAS};
 pub use quantized::{QuantNode, QuantizedWide};
 pub use trinode::{TriNode, TriNodes};
 pub use wide::{Wide, WideNode};
