@@ -91,8 +91,8 @@ impl<B: BoundingVolume> CachedStorage<B> {
 
     /// Trims the storage to the `used` nodes of the built tree. After a
     /// cached build the records are in leaf order: their boxes are the leaf
-    /// bounds, read in one pass.
-    fn finish(self, used: usize, depth: usize, report: BuildReport) -> OwnedBvh<B> {
+    /// bounds, read in one pass (on rayon's pool when `parallel`).
+    fn finish(self, used: usize, depth: usize, report: BuildReport, parallel: bool) -> OwnedBvh<B> {
         let CachedStorage {
             mut nodes,
             mut indices,
@@ -108,7 +108,12 @@ impl<B: BoundingVolume> CachedStorage<B> {
         OwnedBvh {
             nodes,
             indices,
-            leaf_bounds: cache.iter().map(|r| r.bounds()).collect(),
+            leaf_bounds: if parallel {
+                use rayon::prelude::*;
+                cache.par_iter().map(|r| r.bounds()).collect()
+            } else {
+                cache.iter().map(|r| r.bounds()).collect()
+            },
             depth,
             report,
         }
@@ -125,7 +130,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             let t = builder.build_cached(prims, nodes, indices, cache)?;
             (t.node_count(), t.depth(), t.build_report())
         };
-        Ok(storage.finish(used, depth, report))
+        Ok(storage.finish(used, depth, report, false))
     }
 
     /// [`build`](Self::build) on every core of rayon's current pool
@@ -162,7 +167,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             let t = builder.build_cached_forked(prims, nodes, indices, cache, scratch, &fork)?;
             (t.node_count(), t.depth(), t.build_report())
         };
-        Ok(storage.finish(used, depth, report))
+        Ok(storage.finish(used, depth, report, true))
     }
 
     /// Builds bottom-up (scratch allocated here and dropped after the build).
