@@ -105,7 +105,7 @@ fn check<B: BoundingVolume + Send + Sync>(failures: &mut Vec<String>) {
         let mut small_idx = vec![0u32; 60];
         let mut forked_nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(a.len())];
         let mut forked_scratch = forked_nodes.clone();
-        let mut forked_idx = vec![0u32; a.len()];
+        let mut forked_idx = vec![0u32; cfg.index_capacity(a.len())];
         let mut forked_cache = cache.clone();
         let (trees, allocs) = count(|| {
             let forked = cfg
