@@ -184,7 +184,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             work: &mut work,
             keys: &mut keys,
         };
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
+        let mut nodes = vec![Node::<B>::ZERO; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
         let (used, depth, report) = {
             let t = builder.build(prims, &mut nodes, &mut indices, &mut scratch)?;
@@ -203,7 +203,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         let n = prims.len();
         let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut order = vec![0u32; n];
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n)];
+        let mut nodes = vec![Node::<B>::ZERO; bvhkit::max_nodes(n)];
         let mut indices = vec![0u32; n];
         let (used, depth, report) = {
             let t = builder.build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?;
@@ -222,7 +222,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         depth: usize,
         report: BuildReport,
     ) -> Result<Self, Error> {
-        let mut leaf_bounds = vec![Aabb::EMPTY; indices.len()];
+        let mut leaf_bounds = vec![Aabb::ZERO; indices.len()];
         Bvh::from_raw_parts(&nodes, &indices, depth).with_leaf_bounds(prims, &mut leaf_bounds)?;
         Ok(OwnedBvh {
             nodes,
