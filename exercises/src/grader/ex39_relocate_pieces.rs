@@ -47,7 +47,8 @@ pub fn checks() -> Vec<Check> {
             points: 5,
             run: |e| {
                 // (pair, left (primitives, nodes), right, expected bases)
-                let cases: [(u32, (u32, u32), (u32, u32), (u32, u32)); 5] = [
+                type Case = (u32, (u32, u32), (u32, u32), (u32, u32));
+                let cases: [Case; 5] = [
                     // Left smaller: its nodes follow the pair.
                     (1, (3, 5), (9, 13), (3, 7)),
                     // Right smaller: its nodes come first.
