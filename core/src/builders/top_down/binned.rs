@@ -7,7 +7,7 @@ use super::split_points::{even_bin, Plan};
 use super::Task;
 use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
-use glam::{BVec4A, Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A};
 
 /// A bin's bounds in 4-lane registers (the fourth lane is unused).
 #[derive(Clone, Copy, Debug)]
@@ -150,15 +150,8 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
 /// The SAH-best boundary over rows of bins (one row per axis tried; bin `j`
 /// of row `a` holds `counts[a][j]` primitives, `n` in all, every row of the
 /// same length), as (cost, row, boundary). Each row is swept once from the
-/// right (costs kept) and once from the left; the first of equal costs wins,
-/// within a row and across rows.
-///
-/// The three rows are swept side by side, row `a` in lane `a` of 4-lane
-/// registers: one step scores a boundary on all three axes at once, without
-/// branches, and the three running unions are independent chains instead of
-/// one long one. Each lane does the arithmetic of
-/// [`Norm::half_area_lanes`] in the same order, so the costs, and the tree,
-/// are those of one row at a time.
+/// right (costs kept) and once from the left, scoring without branches; the
+/// first of equal costs wins, within a row and across rows.
 // Not generic and out of line: one copy in the firmware, and the frame of
 // its cost array is not added to every caller's.
 #[inline(never)]
@@ -169,66 +162,34 @@ fn best_of_rows(
     enabled: [bool; 3],
     norm: &Norm,
 ) -> Option<(f32, usize, usize)> {
-    let k = lanes
-        .iter()
-        .map(|r| r.len())
-        .chain(counts.iter().map(|c| c.len()))
-        .min()
-        .unwrap_or(0)
-        .min(MAX_BINS);
-    let (lanes, counts) = (lanes.map(|r| &r[..k]), counts.map(|c| &c[..k]));
-    let inv = norm.inv;
-    // Half areas of three boxes, box `a` in lane `a`: the extents are
-    // transposed so that each lane computes `x*y + y*z + z*x` in that order.
-    let half_areas = |b: &[LaneBin; 3]| -> Vec4 {
-        let e = b.map(|b| ((b.max - b.min) * inv).max(Vec3A::ZERO));
-        let x = Vec4::new(e[0].x, e[1].x, e[2].x, 0.0);
-        let y = Vec4::new(e[0].y, e[1].y, e[2].y, 0.0);
-        let z = Vec4::new(e[0].z, e[1].z, e[2].z, 0.0);
-        x * y + y * z + z * x
-    };
-    // Running counts per row, and as floats the way a scalar `m as f32` rounds.
-    let add = |m: &mut [u32; 3], j: usize| {
-        for (m, row) in m.iter_mut().zip(&counts) {
-            *m += row[j];
-        }
-    };
-    let float = |m: &[u32; 3]| Vec4::new(m[0] as f32, m[1] as f32, m[2] as f32, 0.0);
-    let mut right = [Vec4::ZERO; MAX_BINS];
-    let (mut acc, mut m) = ([LaneBin::EMPTY; 3], [0u32; 3]);
-    for j in (1..k).rev() {
-        for (a, row) in acc.iter_mut().zip(&lanes) {
-            *a = a.union(&row[j]);
-        }
-        add(&mut m, j);
-        right[j] = half_areas(&acc) * float(&m);
-    }
-    let (mut left, mut m) = ([LaneBin::EMPTY; 3], [0u32; 3]);
-    let (mut best, mut best_j) = (Vec4::INFINITY, Vec4::ZERO);
-    // A boundary with every primitive on one side is no split.
-    let n = n.min(u32::MAX as usize) as u32;
-    for j in 1..k {
-        for (l, row) in left.iter_mut().zip(&lanes) {
-            *l = l.union(&row[j - 1]);
-        }
-        add(&mut m, j - 1);
-        let c = half_areas(&left) * float(&m) + right[j];
-        let splits = BVec4A::new(
-            m[0] != 0 && m[0] != n,
-            m[1] != 0 && m[1] != n,
-            m[2] != 0 && m[2] != n,
-            false,
-        );
-        let c = Vec4::select(splits, c, Vec4::INFINITY);
-        let better = c.cmplt(best);
-        best = Vec4::select(better, c, best);
-        best_j = Vec4::select(better, Vec4::splat(j as f32), best_j);
-    }
     let mut pick: Option<(f32, usize, usize)> = None;
+    let mut right = [0.0f32; MAX_BINS];
     for a in (0..3).filter(|&a| enabled[a]) {
-        let c = best[a];
-        if c < f32::INFINITY && pick.is_none_or(|(b, _, _)| c < b) {
-            pick = Some((c, a, best_j[a] as usize));
+        let (row, count) = (lanes[a], counts[a]);
+        let k = row.len().min(count.len()).min(MAX_BINS);
+        let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
+        for j in (1..k).rev() {
+            acc = acc.union(&row[j]);
+            m += count[j];
+            right[j] = norm.half_area_lanes(&acc) * m as f32;
+        }
+        let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
+        let mut best = (f32::INFINITY, 0usize);
+        for j in 1..k {
+            left = left.union(&row[j - 1]);
+            m += count[j - 1];
+            let c = norm.half_area_lanes(&left) * m as f32 + right[j];
+            let c = if m != 0 && m as usize != n {
+                c
+            } else {
+                f32::INFINITY
+            };
+            if c < best.0 {
+                best = (c, j);
+            }
+        }
+        if best.0 < f32::INFINITY && pick.is_none_or(|(b, _, _)| best.0 < b) {
+            pick = Some((best.0, a, best.1));
         }
     }
     pick
