@@ -90,6 +90,16 @@ pub enum Error {
         /// The largest value the field holds.
         max: usize,
     },
+    /// The far-link table given to a 16-bit
+    /// [`Preorder`](crate::layout::Preorder) is too small: the tree has
+    /// `needed` links that do not fit 16 bits
+    /// ([`Preorder::far_links_needed`](crate::layout::Preorder::far_links_needed)).
+    FarLinkCapacity {
+        /// Far links the tree needs.
+        needed: usize,
+        /// Entries the caller provided.
+        available: usize,
+    },
     /// A tree is too unbalanced for the implicit array layout: it would need
     /// `slots` array entries for `nodes` nodes.
     SparseTree {
@@ -126,6 +136,7 @@ impl Error {
                 "the primitives given are not the ones the tree was built over"
             }
             Error::FieldOverflow { .. } => "a value does not fit the layout's field",
+            Error::FarLinkCapacity { .. } => "far-link table too small",
             Error::SparseTree { .. } => "tree too unbalanced for the implicit array",
             Error::InvalidConfig(what) | Error::InvalidQuery(what) | Error::InvalidTree(what) => {
                 what
@@ -174,6 +185,10 @@ impl fmt::Display for Error {
             Error::FieldOverflow { field, value, max } => write!(
                 f,
                 "{field} is {value}, more than the layout's field holds ({max})"
+            ),
+            Error::FarLinkCapacity { needed, available } => write!(
+                f,
+                "far-link table too small: need {needed} entries, have {available}"
             ),
             Error::SparseTree { slots, nodes } => write!(
                 f,
@@ -238,6 +253,10 @@ mod tests {
                 field: "f",
                 value: 0,
                 max: 0,
+            },
+            Error::FarLinkCapacity {
+                needed: 0,
+                available: 0,
             },
             Error::SparseTree { slots: 0, nodes: 0 },
             Error::InvalidConfig("bad config"),

@@ -491,7 +491,64 @@ pub trait Exercises {
         nodes: &mut [Node<Aabb>],
         indices: &mut [u32],
     ) -> Option<usize>;
+
+    /// Exercise 36a: 16-bit right links with an escape. Lay `tree` out in
+    /// preorder (the root, its whole left subtree, then its right subtree;
+    /// the left child is `Node::children`'s first) and return one `u16`
+    /// per record, in that order, and the far table:
+    /// - a leaf's entry is `0`;
+    /// - an internal node at record `i` whose right child lands at record
+    ///   `j` stores the offset `j - i` when it is at most `reach`;
+    /// - a larger offset stores [`ESCAPE`] (65 535) instead, and `(i, j)`
+    ///   goes into the far table.
+    ///
+    /// Return the far table sorted by record. `reach` is at most 65 534 (so
+    /// a stored offset is never the escape). An empty tree: two empty lists.
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>);
+
+    /// Exercise 36b: the right child's record of the internal node at
+    /// `record`, from 36a's `links` and sorted `far` table: the record plus
+    /// its offset, or, when its entry is [`ESCAPE`], the far table's entry
+    /// for `record` (found by binary search).
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize;
+
+    /// Exercise 37: fuller quantized records. `bvhkit::layout::QuantizedWide`
+    /// stores a whole small subtree as one leaf slot, naming its primitives
+    /// as one run of the index array, `(first, count)`: the entries
+    /// `tree.indices()[first..first + count]`. Return that run for `node`:
+    /// - a leaf: its own `(first, count)`, whatever `merge`;
+    /// - an internal node: `Some` when the leaves under it hold at most
+    ///   `merge` primitives in all and their entries are one contiguous run
+    ///   (no gap; `first` is the smallest entry), `None` otherwise. A tree
+    ///   from a top-down builder never has a gap; one written by hand (or by
+    ///   another builder) may. `merge = 0` merges no internal node.
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)>;
+
+    /// Exercise 39a: a subtree built on its own, moved into the whole tree
+    /// (the second pass of the parallel build). `piece` is in the canonical
+    /// layout of its own: its root is `piece[0]`, an internal node's
+    /// children are `piece[first]` and `piece[first + 1]`, a leaf holds the
+    /// piece's own primitives `first..first + count`. In the whole tree the
+    /// root goes to a slot elsewhere (its parent's child slot), the other
+    /// nodes go in order to nodes `base`, `base + 1`, ..., and the piece's
+    /// primitives start at entry `start` of the index array. Return the
+    /// piece's nodes as the whole tree holds them, the root first: links
+    /// and ranges moved, volumes and counts unchanged.
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>>;
+
+    /// Exercise 39b: where two halves go. A split node's children take
+    /// nodes `pair` and `pair + 1`; below them come the other nodes of one
+    /// half, then those of the other: the half over fewer primitives
+    /// first, the left one on a tie (the order the sequential builder
+    /// finishes them). `left` and `right` are each half's (primitives,
+    /// nodes), nodes counting the half's own root. Return the node where
+    /// each half's other nodes start, `(left, right)`.
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32);
 }
+
+/// The escape value of exercise 36: "the link is in the far table" (the
+/// library's [`bvhkit::layout::ESCAPE`]).
+pub const ESCAPE: u16 = u16::MAX;
 
 /// What exercise 27 measures (the library's `Bvh::stats` reports these and
 /// more).

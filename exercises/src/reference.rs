@@ -817,4 +817,95 @@ impl Exercises for Reference {
         }
         Some(used)
     }
+
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        let nodes = tree.nodes();
+        let mut links: Vec<u16> = Vec::with_capacity(nodes.len());
+        let mut far = Vec::new();
+        // (node, the record waiting for it as its right child).
+        let mut stack = vec![(0u32, None::<usize>)];
+        if nodes.is_empty() {
+            stack.clear();
+        }
+        while let Some((n, parent)) = stack.pop() {
+            let record = links.len();
+            if let Some(p) = parent {
+                let offset = record - p;
+                links[p] = if offset <= reach as usize {
+                    offset as u16
+                } else {
+                    far.push((p as u32, record as u32));
+                    crate::ESCAPE
+                };
+            }
+            links.push(0);
+            if let Some((l, r)) = nodes[n as usize].children() {
+                stack.push((r, Some(record)));
+                stack.push((l, None));
+            }
+        }
+        // A right link is found after the links of its whole left subtree.
+        far.sort_unstable();
+        (links, far)
+    }
+
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        match links[record] {
+            crate::ESCAPE => far
+                .binary_search_by_key(&(record as u32), |&(r, _)| r)
+                .map_or(usize::MAX, |k| far[k].1 as usize),
+            offset => record + offset as usize,
+        }
+    }
+
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        // The library's version is `run` in core/src/layout/mod.rs.
+        let nodes = tree.nodes();
+        let n = nodes[node as usize];
+        if n.is_leaf() {
+            return Some((n.first, n.count));
+        }
+        let (mut lo, mut hi, mut count) = (u32::MAX, 0u32, 0u64);
+        let mut stack = vec![node];
+        while let Some(i) = stack.pop() {
+            let n = nodes[i as usize];
+            match n.children() {
+                Some((l, r)) => stack.extend([l, r]),
+                None => {
+                    count += n.count as u64;
+                    if count > merge as u64 {
+                        return None;
+                    }
+                    lo = lo.min(n.first);
+                    hi = hi.max(n.first + n.count);
+                }
+            }
+        }
+        (u64::from(hi - lo) == count).then_some((lo, count as u32))
+    }
+
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        // The library does this in `place` in core/src/builders/top_down/fork.rs.
+        // Node k >= 1 of the piece lands on node base + k - 1.
+        piece
+            .iter()
+            .map(|n| Node {
+                first: if n.is_leaf() {
+                    n.first + start
+                } else {
+                    base + n.first - 1
+                },
+                ..*n
+            })
+            .collect()
+    }
+
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        // Each half keeps its own root in the pair, so it has nodes - 1 below.
+        if left.0 <= right.0 {
+            (pair + 2, pair + 2 + (left.1 - 1))
+        } else {
+            (pair + 2 + (right.1 - 1), pair + 2)
+        }
+    }
 }

@@ -447,4 +447,46 @@ impl Exercises for Student {
         let _ = (boxes, max_leaf, nodes, indices);
         todo!("exercise 35")
     }
+
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        // Hint: walk in preorder with a stack of (node, record waiting for
+        // it as its right child). When a node gets its record, fill in the
+        // waiting parent's entry: you learn how far the right child is only
+        // when you reach it. Sort the far table at the end.
+        let _ = (tree, reach);
+        todo!("exercise 36a")
+    }
+
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        // Hint: `slice::binary_search_by_key` finds the entry whose first
+        // element is `record`.
+        let _ = (links, far, record);
+        todo!("exercise 36b")
+    }
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        // Hint: a leaf answers at once. Otherwise walk the subtree (a stack
+        // or recursion), summing the leaves' counts and keeping the smallest
+        // `first` and the largest `first + count`; stop early once the sum
+        // passes `merge`. The leaves' entries never overlap, so they are one
+        // run exactly when largest end - smallest first == the sum.
+        let _ = (tree, node, merge);
+        todo!("exercise 37")
+    }
+
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        // Hint: node k of the piece (k >= 1) lands on node base + k - 1, so
+        // an internal link `first` becomes base + first - 1; a leaf's range
+        // moves with the primitives, by `start`. The root is element 0 of
+        // your answer like any other node.
+        let _ = (piece, start, base);
+        todo!("exercise 39a")
+    }
+
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        // Hint: each half's root is already in the pair, so a half of `m`
+        // nodes puts `m - 1` below it. Compare the primitive counts, not
+        // the node counts.
+        let _ = (pair, left, right);
+        todo!("exercise 39b")
+    }
 }

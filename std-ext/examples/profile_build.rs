@@ -17,9 +17,13 @@ fn main() {
     if let Some(k) = std::env::var("BINS").ok().and_then(|v| v.parse().ok()) {
         cfg.split = bvhkit::SplitPoint::Bins(k);
     }
-    let t = std::time::Instant::now();
-    let mut total = 0;
-    for _ in 0..20 {
+    let reps: usize = std::env::var("REPS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20);
+    let (mut times, mut total) = (Vec::with_capacity(reps), 0);
+    for _ in 0..reps {
+        let t = std::time::Instant::now();
         total += if cached {
             cfg.build_cached(&tris, &mut nodes, &mut idx, &mut cache)
                 .unwrap()
@@ -27,15 +31,18 @@ fn main() {
         } else {
             cfg.build(&tris, &mut nodes, &mut idx).unwrap().node_count()
         };
+        times.push(t.elapsed().as_secs_f64() * 1e3);
     }
+    times.sort_by(f64::total_cmp);
     let sah = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, &tris)
         .unwrap()
         .view()
         .stats()
         .sah_cost;
     println!(
-        "sah {sah:.3}, {} nodes, {:.2} ms per build",
-        total / 20,
-        t.elapsed().as_secs_f64() * 1e3 / 20.0
+        "sah {sah:.3}, {} nodes, {:.2} ms min, {:.2} ms median per build",
+        total / reps,
+        times[0],
+        times[reps / 2]
     );
 }

@@ -4,7 +4,8 @@
 use crate::{median_time, OwnedBvh};
 use bvhkit::glam::Vec3;
 use bvhkit::layout::{
-    Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
+    FarLink, Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide,
+    WideNode,
 };
 use bvhkit::{Aabb, Counts, Error, Hierarchy, Pairs, Query, Ray, RayOrder, TopDown, Triangle};
 use serde::Serialize;
@@ -219,12 +220,40 @@ pub fn measure(
         PreNode::EMPTY,
         Preorder::from_bvh
     );
-    layout!(
-        "preorder-16",
-        PreNode<Aabb, u16>,
-        nodes,
-        PreNode::EMPTY,
-        Preorder::from_bvh
+    // 16-bit links: any tree converts, with the links too far for 16 bits
+    // in a far table (counted in the bytes).
+    let pre16 = || -> Result<LayoutRow, Error> {
+        let far_needed = |t| Preorder::<Aabb, u16>::far_links_needed(t);
+        let (fa, fb) = (far_needed(&va)?, far_needed(&vb)?);
+        let (na, nb) = (va.node_count(), vb.node_count());
+        let empty = PreNode::<Aabb, u16>::EMPTY;
+        let (mut sa, mut sb) = (vec![empty; na], vec![empty; nb]);
+        let (mut far_a, mut far_b) = (vec![FarLink::EMPTY; fa], vec![FarLink::EMPTY; fb]);
+        let t = Instant::now();
+        let la = Preorder::from_bvh_with_far(&va, &mut sa, &mut far_a)?;
+        let mut convert = t.elapsed();
+        for _ in 1..runs {
+            let mut scratch = vec![PreNode::<Aabb, u16>::EMPTY; na];
+            let mut far = vec![FarLink::EMPTY; fa];
+            let t = Instant::now();
+            Preorder::from_bvh_with_far(&va, &mut scratch, &mut far)?;
+            convert = convert.min(t.elapsed());
+        }
+        let lb = Preorder::from_bvh_with_far(&vb, &mut sb, &mut far_b)?;
+        let r = run(&scene, &la, &lb)?;
+        let mut line = row(
+            "preorder-16",
+            size_of::<PreNode<Aabb, u16>>(),
+            na,
+            convert.as_secs_f64() * 1e3,
+            &r,
+        );
+        line.total_bytes += fa * size_of::<FarLink>();
+        line.bytes_per_triangle = line.total_bytes as f64 / a.len() as f64;
+        Ok(line)
+    };
+    rows.push(
+        pre16().unwrap_or_else(|e| refused("preorder-16", size_of::<PreNode<Aabb, u16>>(), e)),
     );
     layout!(
         "tri-node",

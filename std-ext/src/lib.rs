@@ -15,6 +15,7 @@ pub mod layouts;
 pub mod mesh;
 pub mod motion;
 pub mod near_misses;
+pub mod parallel;
 pub mod report;
 pub mod scene;
 pub mod stamp;
@@ -47,31 +48,127 @@ pub struct OwnedBvh<B> {
     report: BuildReport,
 }
 
+/// The storage of a cached top-down build ([`TopDown::build_cached`]), freshly
+/// allocated, and how it becomes an [`OwnedBvh`].
+struct CachedStorage<B> {
+    nodes: Vec<Node<B>>,
+    indices: Vec<u32>,
+    cache: Vec<bvhkit::builders::PrimitiveRef>,
+    scratch: Vec<Node<B>>,
+    n: usize,
+}
+
+impl<B: BoundingVolume> CachedStorage<B> {
+    /// Every buffer is of zero bits: the allocator hands out zeroed pages
+    /// that cost nothing until written, where a non-zero fill would write
+    /// all of them first (over 2n nodes, of which a tree of 4-primitive
+    /// leaves uses about a third).
+    fn new(builder: &TopDown, n: usize, scratch: usize) -> Self {
+        CachedStorage {
+            nodes: vec![Node::<B>::ZERO; bvhkit::max_nodes(n)],
+            indices: vec![0u32; builder.index_capacity(n)],
+            cache: vec![bvhkit::builders::PrimitiveRef::ZERO; n],
+            scratch: vec![Node::<B>::ZERO; scratch],
+            n,
+        }
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn parts(
+        &mut self,
+    ) -> (
+        &mut [Node<B>],
+        &mut [u32],
+        &mut [bvhkit::builders::PrimitiveRef],
+        &mut [Node<B>],
+    ) {
+        (
+            &mut self.nodes,
+            &mut self.indices,
+            &mut self.cache,
+            &mut self.scratch,
+        )
+    }
+
+    /// Trims the storage to the `used` nodes of the built tree. After a
+    /// cached build the records are in leaf order: their boxes are the leaf
+    /// bounds, read in one pass (on rayon's pool when `parallel`).
+    fn finish(self, used: usize, depth: usize, report: BuildReport, parallel: bool) -> OwnedBvh<B> {
+        let CachedStorage {
+            mut nodes,
+            mut indices,
+            cache,
+            scratch,
+            n,
+        } = self;
+        drop(scratch);
+        nodes.truncate(used);
+        nodes.shrink_to_fit();
+        indices.truncate(n);
+        indices.shrink_to_fit();
+        OwnedBvh {
+            nodes,
+            indices,
+            leaf_bounds: if parallel {
+                use rayon::prelude::*;
+                cache.par_iter().map(|r| r.bounds()).collect()
+            } else {
+                cache.iter().map(|r| r.bounds()).collect()
+            },
+            depth,
+            report,
+        }
+    }
+}
+
 impl<B: BoundingVolume> OwnedBvh<B> {
     /// Builds into freshly allocated storage (with the bounds cache of
     /// [`TopDown::build_cached`]), then trims it to what was used.
     pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
-        let mut indices = vec![0u32; builder.index_capacity(prims.len())];
-        let mut cache = vec![bvhkit::builders::PrimitiveRef::EMPTY; prims.len()];
+        let mut storage = CachedStorage::new(builder, prims.len(), 0);
         let (used, depth, report) = {
-            let t = builder.build_cached(prims, &mut nodes, &mut indices, &mut cache)?;
+            let (nodes, indices, cache, _) = storage.parts();
+            let t = builder.build_cached(prims, nodes, indices, cache)?;
             (t.node_count(), t.depth(), t.build_report())
         };
-        nodes.truncate(used);
-        nodes.shrink_to_fit();
-        indices.truncate(prims.len());
-        indices.shrink_to_fit();
-        // After the build the records are in leaf order: their boxes are
-        // the leaf bounds, read in one pass.
-        let leaf_bounds = cache.iter().map(|r| r.bounds()).collect();
-        Ok(OwnedBvh {
-            nodes,
-            indices,
-            leaf_bounds,
-            depth,
-            report,
-        })
+        Ok(storage.finish(used, depth, report, false))
+    }
+
+    /// [`build`](Self::build) on every core of rayon's current pool
+    /// ([`parallel::Threads`]): the same tree, bit for bit. The forked build
+    /// needs a second node array as scratch (allocated here and dropped).
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, TopDown};
+    /// use bvhkit_std::OwnedBvh;
+    /// let tris = bvhkit_std::scene::rock(5, 7); // 20,480 triangles
+    /// let parallel = OwnedBvh::<Aabb>::build_parallel(&TopDown::default(), &tris)?;
+    /// let sequential = OwnedBvh::<Aabb>::build(&TopDown::default(), &tris)?;
+    /// assert_eq!(parallel.view().nodes(), sequential.view().nodes());
+    /// assert_eq!(parallel.view().indices(), sequential.view().indices());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn build_parallel<P: Primitive + Sync>(
+        builder: &TopDown,
+        prims: &[P],
+    ) -> Result<Self, Error>
+    where
+        B: Send + Sync,
+    {
+        let fork = parallel::Threads::default();
+        let n = prims.len();
+        let scratch = if n >= fork.grain {
+            bvhkit::max_nodes(n)
+        } else {
+            0
+        };
+        let mut storage = CachedStorage::new(builder, n, scratch);
+        let (used, depth, report) = {
+            let (nodes, indices, cache, scratch) = storage.parts();
+            let t = builder.build_cached_forked(prims, nodes, indices, cache, scratch, &fork)?;
+            (t.node_count(), t.depth(), t.build_report())
+        };
+        Ok(storage.finish(used, depth, report, true))
     }
 
     /// Builds bottom-up (scratch allocated here and dropped after the build).
@@ -88,7 +185,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             work: &mut work,
             keys: &mut keys,
         };
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
+        let mut nodes = vec![Node::<B>::ZERO; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
         let (used, depth, report) = {
             let t = builder.build(prims, &mut nodes, &mut indices, &mut scratch)?;
@@ -107,7 +204,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         let n = prims.len();
         let mut storage = vec![DynNode::<B>::EMPTY; bvhkit::max_nodes(n)];
         let mut order = vec![0u32; n];
-        let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(n)];
+        let mut nodes = vec![Node::<B>::ZERO; bvhkit::max_nodes(n)];
         let mut indices = vec![0u32; n];
         let (used, depth, report) = {
             let t = builder.build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?;
@@ -126,7 +223,7 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         depth: usize,
         report: BuildReport,
     ) -> Result<Self, Error> {
-        let mut leaf_bounds = vec![Aabb::EMPTY; indices.len()];
+        let mut leaf_bounds = vec![Aabb::ZERO; indices.len()];
         Bvh::from_raw_parts(&nodes, &indices, depth).with_leaf_bounds(prims, &mut leaf_bounds)?;
         Ok(OwnedBvh {
             nodes,

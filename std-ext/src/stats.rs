@@ -4,7 +4,8 @@
 use crate::builders::Builder;
 use crate::{collide::VOLUMES, median_time};
 use bvhkit::layout::{
-    Implicit, PreNode, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
+    FarLink, Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide,
+    WideNode,
 };
 use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, Triangle};
 use serde::Serialize;
@@ -132,15 +133,10 @@ fn run_with<B: BoundingVolume>(
         Ok(n) => Ok(n * each + index),
         Err(e) => Err(e.to_string()),
     };
-    let pre16 = if v.node_count() <= u16::MAX as usize + 1 && mesh.len() <= u16::MAX as usize + 1 {
-        Ok(v.node_count())
-    } else {
-        Err(bvhkit::Error::FieldOverflow {
-            field: "node index or leaf start of a 16-bit preorder link",
-            value: v.node_count().max(mesh.len()) - 1,
-            max: u16::MAX as usize,
-        })
-    };
+    // 16-bit links take any tree: records of 28 bytes (with a box), and
+    // the few links too far for 16 bits in the far table.
+    let pre16 = Preorder::<B, u16>::far_links_needed(&v)
+        .map(|far| v.node_count() * size_of::<PreNode<B, u16>>() + far * size_of::<FarLink>());
     let memory = vec![
         MemoryLine {
             layout: "canonical",
@@ -161,7 +157,7 @@ fn run_with<B: BoundingVolume>(
         },
         MemoryLine {
             layout: "preorder-16",
-            bytes: records(pre16, size_of::<PreNode<B, u16>>()),
+            bytes: records(pre16, 1),
         },
         MemoryLine {
             layout: "tri-node",

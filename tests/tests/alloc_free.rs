@@ -78,7 +78,7 @@ const CONFIGS: [(&str, TopDown); 4] = [
     ),
 ];
 
-fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
+fn check<B: BoundingVolume + Send + Sync>(failures: &mut Vec<String>) {
     let a = grid(500, 0.0);
     let b = grid(400, 0.4);
     for (name, cfg) in CONFIGS {
@@ -103,7 +103,22 @@ fn check<B: BoundingVolume>(failures: &mut Vec<String>) {
         let mut bu_idx = vec![0u32; a.len()];
         let mut small = vec![Node::<B>::EMPTY; bvhkit::max_nodes(60)];
         let mut small_idx = vec![0u32; 60];
+        let mut forked_nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(a.len())];
+        let mut forked_scratch = forked_nodes.clone();
+        let mut forked_idx = vec![0u32; cfg.index_capacity(a.len())];
+        let mut forked_cache = cache.clone();
         let (trees, allocs) = count(|| {
+            let forked = cfg
+                .build_cached_forked(
+                    &a,
+                    &mut forked_nodes,
+                    &mut forked_idx,
+                    &mut forked_cache,
+                    &mut forked_scratch,
+                    &bvhkit::builders::InOrder { grain: 8 },
+                )
+                .unwrap();
+            assert!(forked.node_count() > 0);
             let ta = cfg.build_cached(&a, &mut na, &mut ia, &mut cache).unwrap();
             let tb = cfg.build(&b, &mut nb, &mut ib).unwrap();
             let mut scratch = BottomUpScratch {

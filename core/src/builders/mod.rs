@@ -27,7 +27,7 @@ pub use refit::{refit_all, Refit};
 pub use report::BuildReport;
 
 pub use strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
-pub use top_down::{PrimitiveRef, TopDown};
+pub use top_down::{Fork, InOrder, PrimitiveRef, TopDown};
 
 use crate::bv::BoundingVolume;
 #[cfg(any(feature = "bottom-up", feature = "insertion"))]

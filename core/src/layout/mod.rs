@@ -12,15 +12,16 @@
 //! | canonical [`Bvh`] | [`Node`] | 32 | `first`, `first + 1` | one index names both children |
 //! | [`Implicit`] | [`Slot`] | 28 | `2i + 1`, `2i + 2` | no child links at all (if balanced) |
 //! | [`Preorder`] `u32` | [`PreNode`] | 32 | `i + 1` and a stored right index | left link; left child shares the cache line |
-//! | [`Preorder`] `u16` | [`PreNode`] | 28 | the same, 16-bit | half of each index |
+//! | [`Preorder`] `u16` | [`PreNode`] | 28 | the same, as an offset from the record (an escape to a [`FarLink`] when too far) | half of each index, for any tree size |
 //! | [`TriNodes`] | [`TriNode`] | 92 (3 nodes) | two links per child | links of every other level |
 //! | [`Wide`] | [`WideNode`] | 128 (4 children) | one link per child | 3 of 4 levels; one fetch tests 4 boxes |
-//! | [`QuantizedWide`] | [`QuantNode`] | 64 (4 children) | one link per child | 8-bit boxes relative to the parent |
+//! | [`QuantizedWide`] | [`QuantNode`] | 64 (4 children) | one link per child | 8-bit boxes relative to the parent; small subtrees merged into one leaf slot, so fewer records |
 //!
 //! Every layout keeps the canonical tree's primitive index array, and
 //! [`to_bvh`] turns any of them back into a canonical tree: exactly the same
 //! tree for the binary layouts, an equivalent (wider boxes, extra levels) one
-//! for the quantized and wide ones.
+//! for the wide ones, and for the quantized one an equivalent whose merged
+//! leaves hold up to [`QuantizedWide::MERGED_LEAF`] primitives.
 
 mod implicit;
 mod preorder;
@@ -29,7 +30,7 @@ mod trinode;
 mod wide;
 
 pub use implicit::{Implicit, Slot};
-pub use preorder::{Offset, PreNode, Preorder};
+pub use preorder::{FarLink, Offset, PreNode, Preorder, ESCAPE, LEAF_BIAS};
 pub use quantized::{QuantNode, QuantizedWide};
 pub use trinode::{TriNode, TriNodes};
 pub use wide::{Wide, WideNode};
@@ -249,11 +250,14 @@ pub fn to_bvh<'o, H: Hierarchy>(
 /// two children and, while there is room, replace the internal child with the
 /// largest surface area by its own two children (ties, as among flat boxes,
 /// go to the longer box). Large children are the likeliest to be opened by
-/// a query, so pulling their children up saves the most node fetches.
+/// a query, so pulling their children up saves the most node fetches. A
+/// child whose subtree is a [`run`] of at most `merge` primitives counts as a
+/// leaf (it will be one leaf slot); `merge = 0` merges nothing.
 /// Returns the (2..=4) canonical nodes that become slots.
 pub(crate) fn collapse<B: BoundingVolume>(
     bvh: &Bvh<'_, B>,
     node: u32,
+    merge: u32,
 ) -> ([u32; MAX_CHILDREN], usize) {
     let nodes = bvh.nodes();
     let (l, r) = nodes[node as usize].children().unwrap_or((node, node));
@@ -261,7 +265,7 @@ pub(crate) fn collapse<B: BoundingVolume>(
     let mut len = 2;
     while len < MAX_CHILDREN {
         let widest = (0..len)
-            .filter(|&k| !nodes[slots[k] as usize].is_leaf())
+            .filter(|&k| run(bvh, slots[k], merge).is_none())
             .max_by(|&x, &y| {
                 let size = |k: usize| {
                     let b = nodes[slots[k] as usize].bv.aabb();
@@ -280,6 +284,51 @@ pub(crate) fn collapse<B: BoundingVolume>(
     }
     (slots, len)
 }
+
+/// The primitives of `node`'s subtree as one run of the index array,
+/// `(first, count)`: for a leaf always; for an internal node when its
+/// subtree holds at most `merge` primitives and their entries are contiguous
+/// (a top-down builder always makes them so; others need not), so one leaf
+/// slot of a wide record can stand for the whole subtree.
+pub(crate) fn run<B: BoundingVolume>(
+    bvh: &Bvh<'_, B>,
+    node: u32,
+    merge: u32,
+) -> Option<(u32, u32)> {
+    let nodes = bvh.nodes();
+    let n = &nodes[node as usize];
+    if n.is_leaf() {
+        return Some((n.first, n.count));
+    }
+    if merge == 0 {
+        return None;
+    }
+    // A subtree of at most `merge` primitives has at most `merge` leaves
+    // (a leaf holds one or more), so at most `merge - 1` nodes wait.
+    let (mut lo, mut hi, mut count) = (u32::MAX, 0u32, 0u32);
+    let mut stack = Stack::<u32, { MAX_LEAF_MERGE as usize }>::with(node, 0);
+    while let Some(i) = stack.pop() {
+        let n = &nodes[i as usize];
+        match n.children() {
+            Some((l, r)) => {
+                stack.push(l).ok()?;
+                stack.push(r).ok()?;
+            }
+            None => {
+                count = count.checked_add(n.count)?;
+                if count > merge {
+                    return None;
+                }
+                lo = lo.min(n.first);
+                hi = hi.max(n.first + n.count);
+            }
+        }
+    }
+    (hi - lo == count).then_some((lo, count))
+}
+
+/// Most primitives [`run`] merges into one leaf slot.
+pub(crate) const MAX_LEAF_MERGE: u32 = 64;
 
 /// One slot of a wide record as the conversion walk hands it out.
 #[derive(Clone, Copy, Debug)]
@@ -314,15 +363,16 @@ pub(crate) fn dense<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<(), Error> {
 
 pub(crate) fn fill_wide<B: BoundingVolume, R>(
     bvh: &Bvh<'_, B>,
+    merge: u32,
     out: &mut [R],
     mut record: impl FnMut(&[crate::bv::Aabb], &[SlotSource]) -> Result<R, Error>,
 ) -> Result<(usize, u32), Error> {
     dense(bvh)?;
-    let needed = wide_walk(bvh, |_, _| Ok(()))?;
+    let needed = wide_walk(bvh, merge, |_, _| Ok(()))?;
     check_capacity(needed, out.len())?;
     let nodes = bvh.nodes();
     let mut count = 0u32;
-    wide_walk(bvh, |rec, slots| {
+    wide_walk(bvh, merge, |rec, slots| {
         let mut boxes = [crate::bv::Aabb::EMPTY; MAX_CHILDREN];
         for (b, s) in boxes.iter_mut().zip(slots) {
             *b = nodes[s.node as usize].bv.aabb();
@@ -341,13 +391,13 @@ pub(crate) fn fill_wide<B: BoundingVolume, R>(
 #[inline(never)] // its stack stays out of the caller's frame
 pub(crate) fn wide_walk<B: BoundingVolume>(
     bvh: &Bvh<'_, B>,
+    merge: u32,
     mut emit: impl FnMut(usize, &[SlotSource]) -> Result<(), Error>,
 ) -> Result<usize, Error> {
     crate::tree::hierarchy::check_query(bvh, bvh.primitive_count())?;
     if bvh.is_empty() {
         return Ok(0); // no records, not even the header
     }
-    let nodes = bvh.nodes();
     let mut next = 1u32;
     // (canonical node whose collapse fills the record, record); the header
     // record 0 holds the root alone. The collapse is recomputed on pop, so an
@@ -358,7 +408,7 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
         let (group, len) = if parent == HEADER {
             ([0; MAX_CHILDREN], 1)
         } else {
-            collapse(bvh, parent)
+            collapse(bvh, parent, merge)
         };
         let mut slots = [SlotSource {
             node: 0,
@@ -367,16 +417,15 @@ pub(crate) fn wide_walk<B: BoundingVolume>(
             child_slots: 0,
         }; MAX_CHILDREN];
         for (slot, &c) in slots.iter_mut().zip(&group[..len]) {
-            let node = &nodes[c as usize];
-            *slot = if node.is_leaf() {
+            *slot = if let Some((first, count)) = run(bvh, c, merge) {
                 SlotSource {
                     node: c,
-                    link: node.first,
-                    count: node.count,
+                    link: first,
+                    count,
                     child_slots: 0,
                 }
             } else {
-                let kids = collapse(bvh, c);
+                let kids = collapse(bvh, c, merge);
                 stack.push((c, next))?;
                 if next >= u32::MAX / 4 {
                     return Err(Error::FieldOverflow {

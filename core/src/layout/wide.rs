@@ -110,7 +110,7 @@ impl<'a> Wide<'a> {
 
     /// Records the collapse of `bvh` needs.
     pub fn records_needed<B: BoundingVolume>(bvh: &Bvh<'_, B>) -> Result<usize, Error> {
-        wide_walk(bvh, |_, _| Ok(()))
+        wide_walk(bvh, 0, |_, _| Ok(()))
     }
 
     /// Collapses `bvh` into `out` (at least
@@ -119,7 +119,7 @@ impl<'a> Wide<'a> {
         bvh: &Bvh<'a, B>,
         out: &'a mut [WideNode],
     ) -> Result<Self, Error> {
-        let (needed, count) = fill_wide(bvh, out, |boxes, slots| {
+        let (needed, count) = fill_wide(bvh, 0, out, |boxes, slots| {
             let mut r = WideNode::EMPTY;
             for (k, (b, s)) in boxes.iter().zip(slots).enumerate() {
                 for axis in 0..3 {

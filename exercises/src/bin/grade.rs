@@ -21,7 +21,7 @@ fn main() {
                 Some((Ok(n), _)) if grader::exercise_title(n).is_some() => only.push(n),
                 Some((_, n)) => fail(&format!(
                     "there is no exercise {n:?}: the exercises are numbered 1 to {}",
-                    grader::EXERCISES.len()
+                    grader::EXERCISES[grader::EXERCISES.len() - 1].0
                 )),
                 None => fail("--exercise needs a number"),
             },

@@ -41,6 +41,9 @@ mod ex32_insertion_descent;
 mod ex33_ray_best_first;
 mod ex34_wide_nodes;
 mod ex35_top_down_build;
+mod ex36_short_links;
+mod ex37_merged_leaves;
+mod ex39_relocate_pieces;
 #[cfg(test)]
 mod wrong;
 
@@ -69,7 +72,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 35] = [
+pub const EXERCISES: [(u32, &str); 38] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -111,6 +114,12 @@ pub const EXERCISES: [(u32, &str); 35] = [
     (33, "best-first search for a ray: the closest hit"),
     (34, "tree degree: collapsing into 4-wide nodes"),
     (35, "a whole top-down build, into the caller's arrays"),
+    (36, "16-bit links with an escape to a far table"),
+    (
+        37,
+        "fuller quantized records: a small subtree as one leaf slot",
+    ),
+    (39, "the parallel build: moving pieces into place"),
 ];
 
 /// A score for one exercise.
@@ -166,6 +175,9 @@ pub fn checks() -> Vec<Check> {
         ex33_ray_best_first::checks(),
         ex34_wide_nodes::checks(),
         ex35_top_down_build::checks(),
+        ex36_short_links::checks(),
+        ex37_merged_leaves::checks(),
+        ex39_relocate_pieces::checks(),
     ]
     .concat()
 }
@@ -379,7 +391,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 390/390 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 422/422 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the
@@ -399,7 +411,7 @@ mod tests {
             "{:?}",
             start.elapsed()
         );
-        assert_eq!(reported, (1..=EXERCISES.len() as u32).collect::<Vec<_>>());
+        assert_eq!(reported, EXERCISES.iter().map(|e| e.0).collect::<Vec<_>>());
         for s in &scores {
             if s.exercise == 8 {
                 assert_eq!(s.earned, 0, "{s:?}");

@@ -39,6 +39,9 @@ use super::ex32_insertion_descent;
 use super::ex33_ray_best_first;
 use super::ex34_wide_nodes;
 use super::ex35_top_down_build;
+use super::ex36_short_links;
+use super::ex37_merged_leaves;
+use super::ex39_relocate_pieces;
 use bvhkit::builders::DynNode;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
@@ -90,6 +93,9 @@ pub fn counts() -> Vec<(u32, u32)> {
         (33, ex33_ray_best_first::wrong::COUNT),
         (34, ex34_wide_nodes::wrong::COUNT),
         (35, ex35_top_down_build::wrong::COUNT),
+        (36, ex36_short_links::wrong::COUNT),
+        (37, ex37_merged_leaves::wrong::COUNT),
+        (39, ex39_relocate_pieces::wrong::COUNT),
     ]
 }
 
@@ -283,5 +289,20 @@ impl Exercises for Wrong {
         indices: &mut [u32],
     ) -> Option<usize> {
         ex35_top_down_build::wrong::top_down_build(self.k(35), boxes, max_leaf, nodes, indices)
+    }
+    fn short_links(&self, tree: &Bvh<Aabb>, reach: u16) -> (Vec<u16>, Vec<(u32, u32)>) {
+        ex36_short_links::wrong::short_links(self.k(36), tree, reach)
+    }
+    fn decode_right(&self, links: &[u16], far: &[(u32, u32)], record: usize) -> usize {
+        ex36_short_links::wrong::decode_right(self.k(36), links, far, record)
+    }
+    fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
+        ex37_merged_leaves::wrong::merged_run(self.k(37), tree, node, merge)
+    }
+    fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
+        ex39_relocate_pieces::wrong::relocate_piece(self.k(39), piece, start, base)
+    }
+    fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
+        ex39_relocate_pieces::wrong::piece_bases(self.k(39), pair, left, right)
     }
 }

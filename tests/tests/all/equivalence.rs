@@ -140,4 +140,42 @@ proptest! {
         prop_assert_eq!(t1.indices(), t2.indices());
         prop_assert_eq!(t1.depth(), t2.depth());
     }
+
+    /// The forked build (both halves of large nodes through a `Fork`) makes
+    /// the sequential tree, bit for bit, for any configuration and grain,
+    /// on the calling thread (`InOrder`) and on a pool of threads.
+    #[test]
+    fn forked_build_makes_the_same_tree(
+        cfg in any_top_down(),
+        a in scene(80),
+        grain in 2usize..40,
+    ) {
+        use bvhkit::builders::{InOrder, PrimitiveRef};
+        use bvhkit::{Node, Sphere};
+        use bvhkit_std::parallel::Threads;
+        let n = a.len();
+        let mut n1 = vec![Node::<Sphere>::EMPTY; bvhkit::max_nodes(n)];
+        let mut i1 = vec![0u32; cfg.index_capacity(n)];
+        let mut cache = vec![PrimitiveRef::EMPTY; n];
+        let t1 = cfg.build_cached(&a, &mut n1, &mut i1, &mut cache).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+        for threads in [false, true] {
+            let mut n2 = vec![Node::<Sphere>::ZERO; bvhkit::max_nodes(n)];
+            let mut scratch = n2.clone();
+            let mut i2 = vec![0u32; cfg.index_capacity(n)];
+            let mut cache = vec![PrimitiveRef::ZERO; n];
+            let t2 = if threads {
+                pool.install(|| {
+                    cfg.build_cached_forked(&a, &mut n2, &mut i2, &mut cache, &mut scratch, &Threads { grain })
+                })
+            } else {
+                cfg.build_cached_forked(&a, &mut n2, &mut i2, &mut cache, &mut scratch, &InOrder { grain })
+            }
+            .unwrap();
+            prop_assert_eq!(t1.nodes(), t2.nodes());
+            prop_assert_eq!(t1.indices(), t2.indices());
+            prop_assert_eq!(t1.depth(), t2.depth());
+            prop_assert_eq!(t1.build_report(), t2.build_report());
+        }
+    }
 }

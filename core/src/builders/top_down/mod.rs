@@ -22,11 +22,13 @@
 mod axes;
 mod binned;
 mod criteria;
+mod fork;
 mod partition;
 mod source;
 mod split_points;
 mod stop;
 
+pub use fork::{Fork, InOrder};
 pub use source::PrimitiveRef;
 
 use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
@@ -351,48 +353,63 @@ impl TopDown {
         if idx.is_empty() {
             return Ok((0, 0, report)); // the empty tree: no nodes at all
         }
-        let (bounds, centroids) = bounds_of(src, idx);
-        const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
-        let mut stack = [Task {
-            node: 0,
-            start: 0,
-            end: 0,
-            depth: 0,
-            bounds: Aabb::EMPTY,
-            centroids: Aabb::EMPTY,
-        }; STACK];
-        let mut top = 0;
-        let mut used = 1usize;
-        let mut max_depth = 0u32;
-        let mut task = Task {
-            node: 0,
-            start: 0,
-            end: idx.len() as u32,
-            depth: 0,
-            bounds,
-            centroids,
+        let root = Task::root(src, idx);
+        let (used, depth) = self.run_task(src, nodes, idx, scratch, root, &mut report)?;
+        Ok((used, depth, report))
+    }
+
+    /// One node's decision: its volume, and its two halves unless it is a
+    /// leaf (the halves' ranges are relative to `range`).
+    fn step<S: Source, B: BoundingVolume>(
+        &self,
+        src: &S,
+        range: &mut [S::Item],
+        scratch: &mut [u32],
+        task: &Task,
+        report: &mut BuildReport,
+    ) -> (B, Option<Halves>) {
+        let bv = B::fit_boxes(&SourceBoxes { src, items: range }, &task.bounds);
+        let count = range.len() as u32;
+        let stop = count <= self.stop.max_leaf_size
+            || task.depth >= self.stop.max_depth
+            || (self.stop.min_volume > 0.0 && bv.volume() < self.stop.min_volume);
+        let halves = if stop {
+            None
+        } else {
+            let m = range.len().min(scratch.len());
+            self.split(src, range, &mut scratch[..m], task, &bv, report)
         };
+        if halves.is_none() {
+            report.oversized_leaves += u32::from(count > self.stop.max_leaf_size);
+        }
+        (bv, halves)
+    }
+
+    /// Builds the subtree of `task` (whose range indexes `idx`) into `nodes`,
+    /// its root at `task.node`; returns (nodes used, deepest leaf's depth).
+    fn run_task<S: Source, B: BoundingVolume>(
+        &self,
+        src: &S,
+        nodes: &mut [Node<B>],
+        idx: &mut [S::Item],
+        scratch: &mut [u32],
+        mut task: Task,
+        report: &mut BuildReport,
+    ) -> Result<(usize, u32), Error> {
+        const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
+        let mut stack = [task; STACK];
+        let mut top = 0;
+        let mut used = task.node as usize + 1;
+        let mut max_depth = 0u32;
         loop {
             let (s, e) = (task.start as usize, task.end as usize);
-            let range = &mut idx[s..e];
-            let bv = B::fit_boxes(&SourceBoxes { src, items: range }, &task.bounds);
-            let count = (e - s) as u32;
-            let stop = count <= self.stop.max_leaf_size
-                || task.depth >= self.stop.max_depth
-                || (self.stop.min_volume > 0.0 && bv.volume() < self.stop.min_volume);
-            let halves = if stop {
-                None
-            } else {
-                let m = range.len().min(scratch.len());
-                self.split(src, range, &mut scratch[..m], &task, &bv, &mut report)
-            };
+            let (bv, halves) = self.step(src, &mut idx[s..e], scratch, &task, report);
             match halves {
                 None => {
-                    report.oversized_leaves += u32::from(count > self.stop.max_leaf_size);
                     nodes[task.node as usize] = Node {
                         bv,
                         first: task.start,
-                        count,
+                        count: (e - s) as u32,
                     };
                     max_depth = max_depth.max(task.depth);
                     if top == 0 {
@@ -415,17 +432,7 @@ impl TopDown {
                         first: left,
                         count: 0,
                     };
-                    let mid = (s + h.mid) as u32;
-                    let child = |i: usize, start: u32, end: u32| Task {
-                        node: left + i as u32,
-                        start,
-                        end,
-                        depth: task.depth + 1,
-                        bounds: h.bounds[i],
-                        centroids: h.centroids[i],
-                    };
-                    let l = child(0, task.start, mid);
-                    let r = child(1, mid, task.end);
+                    let (l, r) = task.children(left, &h);
                     // Defer the larger half and continue with the smaller one (as
                     // quicksort recurses on the smaller side): everything pushed
                     // before the deferred half is popped lies inside a range at
@@ -447,7 +454,36 @@ impl TopDown {
                 }
             }
         }
-        Ok((used, max_depth, report))
+        Ok((used, max_depth))
+    }
+}
+
+impl Task {
+    /// The whole range, at depth 0 in node 0.
+    fn root<S: Source>(src: &S, idx: &[S::Item]) -> Task {
+        let (bounds, centroids) = bounds_of(src, idx);
+        Task {
+            node: 0,
+            start: 0,
+            end: idx.len() as u32,
+            depth: 0,
+            bounds,
+            centroids,
+        }
+    }
+
+    /// The two halves of this node, in nodes `left` and `left + 1`.
+    fn children(&self, left: u32, h: &Halves) -> (Task, Task) {
+        let mid = self.start + h.mid as u32;
+        let child = |i: usize, start: u32, end: u32| Task {
+            node: left + i as u32,
+            start,
+            end,
+            depth: self.depth + 1,
+            bounds: h.bounds[i],
+            centroids: h.centroids[i],
+        };
+        (child(0, self.start, mid), child(1, mid, self.end))
     }
 }
 
@@ -460,28 +496,33 @@ fn refit_to_contain_children<B: BoundingVolume>(nodes: &mut [Node<B>]) {
     for i in (0..nodes.len()).rev() {
         if let Some((l, r)) = nodes[i].children() {
             let (lb, rb) = (nodes[l as usize].bv, nodes[r as usize].bv);
-            let bv = nodes[i].bv;
-            if bv.contains(&lb) && bv.contains(&rb) {
-                continue;
-            }
-            let enlarged = bv.merge(&lb).merge(&rb);
-            let merged = lb.merge(&rb);
-            let mut pick = if merged.volume() < enlarged.volume() {
-                merged
-            } else {
-                enlarged
-            };
-            // Merges are conservative but a rounding step may still leave a hair
-            // outside; fall back to merging again until containment holds.
-            for _ in 0..4 {
-                if pick.contains(&lb) && pick.contains(&rb) {
-                    break;
-                }
-                pick = pick.merge(&lb).merge(&rb);
-            }
-            nodes[i].bv = pick;
+            nodes[i].bv = containing_children(&nodes[i].bv, &lb, &rb);
         }
     }
+}
+
+/// `bv`, or when it misses a child's volume, the smaller of `bv` enlarged
+/// to take both children and the children's merge.
+fn containing_children<B: BoundingVolume>(bv: &B, lb: &B, rb: &B) -> B {
+    if bv.contains(lb) && bv.contains(rb) {
+        return *bv;
+    }
+    let enlarged = bv.merge(lb).merge(rb);
+    let merged = lb.merge(rb);
+    let mut pick = if merged.volume() < enlarged.volume() {
+        merged
+    } else {
+        enlarged
+    };
+    // Merges are conservative but a rounding step may still leave a hair
+    // outside; fall back to merging again until containment holds.
+    for _ in 0..4 {
+        if pick.contains(lb) && pick.contains(rb) {
+            break;
+        }
+        pick = pick.merge(lb).merge(rb);
+    }
+    pick
 }
 
 #[cfg(test)]

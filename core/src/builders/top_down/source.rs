@@ -25,6 +25,14 @@ impl PrimitiveRef {
         max: Vec4::new(f32::NEG_INFINITY, f32::NEG_INFINITY, f32::NEG_INFINITY, 0.0),
     };
 
+    /// A record of zero bits (a point box at the origin, index 0), for storage
+    /// the builder overwrites: a `Vec` of it comes from zeroed memory, which
+    /// costs nothing until a page is written (see [`Node::ZERO`](crate::Node::ZERO)).
+    pub const ZERO: PrimitiveRef = PrimitiveRef {
+        min: Vec4::ZERO,
+        max: Vec4::ZERO,
+    };
+
     /// The record of primitive `index` with these bounds.
     ///
     /// ```
@@ -146,6 +154,11 @@ mod tests {
             let (lo, hi) = r.lanes();
             assert_eq!((Vec3::from(lo), Vec3::from(hi)), (b.min, b.max));
         }
+        let zero = PrimitiveRef::ZERO;
+        assert_eq!(
+            (zero.bounds(), zero.index()),
+            (Aabb::new(Vec3::ZERO, Vec3::ZERO), 0)
+        );
         assert_eq!(core::mem::size_of::<PrimitiveRef>(), 32);
         assert_eq!(core::mem::align_of::<PrimitiveRef>(), 16);
     }

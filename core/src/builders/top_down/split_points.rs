@@ -190,8 +190,17 @@ pub(super) fn plan_by_directions<S: Source, B: BoundingVolume>(
                         planes(&[mean as f32])
                     }
                     SplitPoint::RandomCentroids { count, seed } => {
-                        let mut rng =
-                            SplitMix(seed ^ (task.node as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+                        // Seeded by what the node holds (its centroids' box and
+                        // count), not by its number: a forked build numbers
+                        // nodes differently and must draw the same candidates.
+                        let c = &task.centroids;
+                        let key = [c.min, c.max]
+                            .iter()
+                            .flat_map(|v| v.to_array())
+                            .fold(range.len() as u64, |h, x| {
+                                (h ^ u64::from(x.to_bits())).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+                            });
+                        let mut rng = SplitMix(seed ^ key);
                         let mut p = [0.0f32; MAX_BINS];
                         let m = (count as usize).min(MAX_BINS);
                         for slot in p.iter_mut().take(m) {
