@@ -17,7 +17,7 @@ pub mod reference;
 pub mod student;
 
 use bvhkit::builders::DynNode;
-use bvhkit::glam::Vec3;
+use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
     Stop, Triangle,
@@ -524,6 +524,40 @@ pub trait Exercises {
     ///   another builder) may. `merge = 0` merges no internal node.
     fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)>;
 
+    /// Exercise 38a: clip a convex polygon by a half-space, one step of
+    /// measuring a k-DOP exactly (Sutherland–Hodgman for one plane).
+    /// `polygon` is convex and planar, with at least three vertices, no two
+    /// consecutive ones equal, and its last vertex joined to its first.
+    /// Write to `out` the vertices of its part where `normal . p <= offset`
+    /// and return how many. Walk the edges `p -> q`, the closing edge (last
+    /// to first) included: keep `p` when `normal . p <= offset`, then add
+    /// the point where the edge crosses the plane when its ends lie
+    /// strictly on opposite sides. So a vertex exactly on the plane is kept
+    /// once, and an edge that only touches the plane at an end adds no
+    /// point. What is left may be nothing (0), or only a vertex or an edge
+    /// of a polygon touching the plane from outside (1 or 2 vertices); a
+    /// polygon lying in the plane is kept whole. `normal` need not be of
+    /// unit length. `out` has `polygon.len() + 1` entries, the most a convex
+    /// polygon can need. The grader accepts any starting vertex (the order
+    /// around the polygon must be the input's) and coordinates within
+    /// 1e-9, relative.
+    fn clip_polygon(
+        &self,
+        polygon: &[DVec3],
+        normal: DVec3,
+        offset: f64,
+        out: &mut [DVec3],
+    ) -> usize;
+
+    /// Exercise 38b: the area of what is left of a convex polygon after
+    /// clipping it by each half-space `normal . p <= offset` of `planes` in
+    /// turn (with 38a): the face of a k-DOP on one of its planes is a large
+    /// square in that plane clipped by every other plane. 0 when fewer than
+    /// three vertices are left. `polygon.len() + planes.len()` is at most
+    /// [`CLIP_CAPACITY`], so two arrays of that many vertices hold every
+    /// step.
+    fn clipped_area(&self, polygon: &[DVec3], planes: &[(DVec3, f64)]) -> f64;
+
     /// Exercise 39a: a subtree built on its own, moved into the whole tree
     /// (the second pass of the parallel build). `piece` is in the canonical
     /// layout of its own: its root is `piece[0]`, an internal node's
@@ -545,6 +579,10 @@ pub trait Exercises {
     /// each half's other nodes start, `(left, right)`.
     fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32);
 }
+
+/// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face
+/// is a square clipped by the 25 other planes, 29 vertices at most.
+pub const CLIP_CAPACITY: usize = 32;
 
 /// The escape value of exercise 36: "the link is in the far table" (the
 /// library's [`bvhkit::layout::ESCAPE`]).

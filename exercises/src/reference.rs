@@ -2,7 +2,7 @@
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
-use bvhkit::glam::Vec3;
+use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::layout::{Wide, WideNode};
 use bvhkit::query::{Ray, RayTarget};
 use bvhkit::{
@@ -884,6 +884,51 @@ impl Exercises for Reference {
         (u64::from(hi - lo) == count).then_some((lo, count as u32))
     }
 
+    fn clip_polygon(
+        &self,
+        polygon: &[DVec3],
+        normal: DVec3,
+        offset: f64,
+        out: &mut [DVec3],
+    ) -> usize {
+        // The library's version is `clip` in core/src/bv/polytope.rs: it
+        // counts a vertex within 1e-12 of the plane as on it and may then
+        // repeat it (an area does not mind), where this one is exact.
+        let n = polygon.len();
+        let mut m = 0;
+        for i in 0..n {
+            let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+            let (sp, sq) = (normal.dot(p) - offset, normal.dot(q) - offset);
+            if sp <= 0.0 {
+                out[m] = p;
+                m += 1;
+            }
+            // Strictly on opposite sides: an end on the plane is a vertex
+            // already kept (or about to be), not a crossing.
+            if (sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0) {
+                out[m] = p + (q - p) * (sp / (sp - sq));
+                m += 1;
+            }
+        }
+        m
+    }
+
+    fn clipped_area(&self, polygon: &[DVec3], planes: &[(DVec3, f64)]) -> f64 {
+        // The library's version is `Planes::face_area` in core/src/bv/polytope.rs.
+        let mut buf = [[DVec3::ZERO; crate::CLIP_CAPACITY]; 2];
+        let mut len = polygon.len();
+        buf[0][..len].copy_from_slice(polygon);
+        for (k, &(normal, offset)) in planes.iter().enumerate() {
+            let [a, b] = &mut buf;
+            let (from, to) = if k % 2 == 0 { (a, b) } else { (b, a) };
+            len = self.clip_polygon(&from[..len], normal, offset, to);
+            if len < 3 {
+                return 0.0;
+            }
+        }
+        polygon_area(&buf[planes.len() % 2][..len])
+    }
+
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
         // The library does this in `place` in core/src/builders/top_down/fork.rs.
         // Node k >= 1 of the piece lands on node base + k - 1.
@@ -908,4 +953,14 @@ impl Exercises for Reference {
             (pair + 2 + (right.1 - 1), pair + 2)
         }
     }
+}
+
+/// The area of a planar polygon: half the length of the sum of the
+/// triangles' cross products from its first vertex (any orientation).
+pub(crate) fn polygon_area(poly: &[DVec3]) -> f64 {
+    let mut twice = DVec3::ZERO;
+    for i in 1..poly.len().saturating_sub(1) {
+        twice += (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]);
+    }
+    0.5 * twice.length()
 }

@@ -3,7 +3,7 @@
 
 use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::DynNode;
-use bvhkit::glam::Vec3;
+use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::{
     Aabb, Bvh, CostModel, Counts, Decision, Descent, Dop14, Node, Obb, Open, Partition, Sphere,
     Stop, Triangle,
@@ -471,6 +471,31 @@ impl Exercises for Student {
         // run exactly when largest end - smallest first == the sum.
         let _ = (tree, node, merge);
         todo!("exercise 37")
+    }
+
+    fn clip_polygon(
+        &self,
+        polygon: &[DVec3],
+        normal: DVec3,
+        offset: f64,
+        out: &mut [DVec3],
+    ) -> usize {
+        // Hint: the signed distance `s = normal.dot(p) - offset` says which
+        // side a vertex is on. For each edge p -> q (i + 1 wraps to 0):
+        // keep p if s(p) <= 0; if s(p) and s(q) have strictly opposite
+        // signs, add p + (q - p) * t with t = s(p) / (s(p) - s(q)), the
+        // fraction of the way from p where the distance reaches 0.
+        let _ = (polygon, normal, offset, out);
+        todo!("exercise 38a")
+    }
+
+    fn clipped_area(&self, polygon: &[DVec3], planes: &[(DVec3, f64)]) -> f64 {
+        // Hint: two arrays of `crate::CLIP_CAPACITY` vertices; copy the
+        // polygon into one, then clip from one into the other and swap
+        // their roles after each plane. The area of a convex polygon is
+        // half the length of the sum of (v[i] - v[0]) x (v[i+1] - v[0]).
+        let _ = (polygon, planes);
+        todo!("exercise 38b")
     }
 
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {

@@ -43,6 +43,7 @@ mod ex34_wide_nodes;
 mod ex35_top_down_build;
 mod ex36_short_links;
 mod ex37_merged_leaves;
+mod ex38_clip_polygon;
 mod ex39_relocate_pieces;
 #[cfg(test)]
 mod wrong;
@@ -72,7 +73,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 38] = [
+pub const EXERCISES: [(u32, &str); 39] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -119,6 +120,7 @@ pub const EXERCISES: [(u32, &str); 38] = [
         37,
         "fuller quantized records: a small subtree as one leaf slot",
     ),
+    (38, "exact k-DOP measures: polygon clipping"),
     (39, "the parallel build: moving pieces into place"),
 ];
 
@@ -177,6 +179,7 @@ pub fn checks() -> Vec<Check> {
         ex35_top_down_build::checks(),
         ex36_short_links::checks(),
         ex37_merged_leaves::checks(),
+        ex38_clip_polygon::checks(),
         ex39_relocate_pieces::checks(),
     ]
     .concat()
@@ -391,7 +394,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 422/422 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 440/440 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

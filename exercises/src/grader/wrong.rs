@@ -41,8 +41,10 @@ use super::ex34_wide_nodes;
 use super::ex35_top_down_build;
 use super::ex36_short_links;
 use super::ex37_merged_leaves;
+use super::ex38_clip_polygon;
 use super::ex39_relocate_pieces;
 use bvhkit::builders::DynNode;
+use bvhkit::glam::DVec3;
 
 /// Wrong answer `k` (from 1) of exercise `exercise`; the reference elsewhere.
 pub struct Wrong {
@@ -95,6 +97,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (35, ex35_top_down_build::wrong::COUNT),
         (36, ex36_short_links::wrong::COUNT),
         (37, ex37_merged_leaves::wrong::COUNT),
+        (38, ex38_clip_polygon::wrong::COUNT),
         (39, ex39_relocate_pieces::wrong::COUNT),
     ]
 }
@@ -298,6 +301,18 @@ impl Exercises for Wrong {
     }
     fn merged_run(&self, tree: &Bvh<Aabb>, node: u32, merge: u32) -> Option<(u32, u32)> {
         ex37_merged_leaves::wrong::merged_run(self.k(37), tree, node, merge)
+    }
+    fn clip_polygon(
+        &self,
+        polygon: &[DVec3],
+        normal: DVec3,
+        offset: f64,
+        out: &mut [DVec3],
+    ) -> usize {
+        ex38_clip_polygon::wrong::clip_polygon(self.k(38), polygon, normal, offset, out)
+    }
+    fn clipped_area(&self, polygon: &[DVec3], planes: &[(DVec3, f64)]) -> f64 {
+        ex38_clip_polygon::wrong::clipped_area(self.k(38), polygon, planes)
     }
     fn relocate_piece(&self, piece: &[Node<Aabb>], start: u32, base: u32) -> Vec<Node<Aabb>> {
         ex39_relocate_pieces::wrong::relocate_piece(self.k(39), piece, start, base)
