@@ -69,7 +69,7 @@ pub use bv::Obb;
 pub use bv::Sphere;
 pub use bv::{symmetric_eigen, Aabb, BoundingVolume, PointSet};
 #[cfg(feature = "kdop")]
-pub use bv::{Dop14, Dop18, Dop26, Kdop};
+pub use bv::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
 pub use error::Error;
 pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};

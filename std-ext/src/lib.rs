@@ -21,6 +21,7 @@ pub mod scene;
 pub mod stamp;
 pub mod stats;
 pub mod tour;
+pub mod volumes;
 
 use bvhkit::{Aabb, BoundingVolume, BuildReport, Bvh, Error, Node, Primitive, TopDown};
 use std::time::{Duration, Instant};

@@ -10,6 +10,7 @@ use crate::advisor::{self, AdvisorRow, Case};
 use crate::layouts::{self, LayoutRow};
 use crate::near_misses::{self, NarrowRow};
 use crate::tour::{self, Builder};
+use crate::volumes::{self, VolumeRow};
 use crate::{median_time, scene};
 use bvhkit::builders::{
     BottomUp, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
@@ -72,6 +73,8 @@ pub struct Report {
     pub fits: Vec<FitRow>,
     /// Builders.
     pub builders: Vec<BuilderRow>,
+    /// Each volume type's tree and its pair query.
+    pub volumes: Vec<VolumeRow>,
     /// Representations.
     pub layouts: Vec<LayoutRow>,
     /// Narrow phase: the triangle test with exact, `f64` and `f32` signs.
@@ -316,15 +319,11 @@ pub fn run_with_meshes(
     let fits = run_fits(subdivisions, runs, meshes, &mut progress);
     let mut builders = builder_rows("rocks", &a, &b, runs, &mut progress)?;
     for (name, mesh) in meshes {
-        let mut bounds = Aabb::EMPTY;
-        for t in mesh {
-            bounds = bounds.union(&bvhkit::Primitive::bounds(t));
-        }
-        let shift = Vec3::X * (bounds.max - bounds.min).length() / 20.0;
-        let moved: Vec<Triangle> = mesh.iter().map(|t| t.translated(shift)).collect();
+        let moved = shifted_copy(mesh);
         builders.extend(builder_rows(name, mesh, &moved, runs, &mut progress)?);
     }
     mark_pareto(&mut builders);
+    let volume_rows = run_volumes(subdivisions, runs, meshes, &mut progress)?;
     progress("tree representations");
     let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
     progress("narrow phase: exact, f64 and f32 signs");
@@ -341,10 +340,47 @@ pub fn run_with_meshes(
         recorded: format!("{} · medians of {runs} runs", crate::stamp::now()),
         fits,
         builders,
+        volumes: volume_rows,
         layouts,
         narrow,
         advisor,
     })
+}
+
+/// Only the volume-type table of a report ([`volumes::measure`]): the rock
+/// pair of `subdivisions`, then each real mesh against a shifted copy.
+pub fn run_volumes(
+    subdivisions: u32,
+    runs: usize,
+    meshes: &[(String, Vec<Triangle>)],
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<VolumeRow>, bvhkit::Error> {
+    let (a, b) = scene::rock_pair(subdivisions);
+    progress("rocks: every volume's tree and pair query");
+    let mut rows = volumes::measure("rocks", &a, &b, runs, true)?;
+    for (name, mesh) in meshes {
+        progress(&format!("{name}: every volume's tree and pair query"));
+        let moved = shifted_copy(mesh);
+        let exact = mesh.len() <= EXACT_MEASURE_ROWS_UP_TO;
+        rows.extend(volumes::measure(name, mesh, &moved, runs, exact)?);
+    }
+    Ok(rows)
+}
+
+/// Real meshes up to this many triangles also get the exact-measure k-DOP
+/// rows (bottom-up builds with exact measures take seconds per tree at
+/// 20 000 triangles).
+const EXACT_MEASURE_ROWS_UP_TO: usize = 25_000;
+
+/// `mesh` shifted along x by a twentieth of its box's diagonal: the second
+/// object of a real mesh's pair query.
+fn shifted_copy(mesh: &[Triangle]) -> Vec<Triangle> {
+    let mut bounds = Aabb::EMPTY;
+    for t in mesh {
+        bounds = bounds.union(&bvhkit::Primitive::bounds(t));
+    }
+    let shift = Vec3::X * (bounds.max - bounds.min).length() / 20.0;
+    mesh.iter().map(|t| t.translated(shift)).collect()
 }
 
 /// Every builder on the scene `a` against `b`.
@@ -541,6 +577,8 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
     md += "## Fitting a volume\n\nOne volume around all vertices of each mesh. Looseness is the volume over the volume of the mesh's convex hull (the smallest convex volume there is; `-` where the hull is flat), and over the smallest volume any method found. A k-DOP's volume is its polytope's, not its box's.\n\n![fits](fits.svg)\n\n";
     let table = render_fits(&r.fits);
     md += &anchored("fits", &table);
+    md += "\n## What a volume buys a pair query\n\nA tree of each volume type over the same scene: build time, SAH cost (each volume's own exact measures), and the default pair query's volume tests (Nv), primitive tests (Np) and time, checked against brute force. A top-down build scores primitive boxes whatever the volume, so every top-down tree has the same shape. Under PLOC, k-DOPs compare merges by their enclosing boxes' areas (the default); the `-exact` rows compare the polytopes' exact areas and, in the larger-volume descent, volumes.\n\n";
+    md += &anchored("volumes", &volumes::render(&r.volumes));
     md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\nThe plot shows the generated rocks; real meshes given with `--mesh` have their own rows (each against a copy of itself shifted by a twentieth of its size), with the Pareto front marked per scene.\n\n";
     let mut table = String::from(
         "| scene | builder | build ms | SAH | query ms | verified |\n|---|---|---:|---:|---:|---|\n",
@@ -684,9 +722,11 @@ mod tests {
         }
         let md = std::fs::read_to_string(&files[0]).unwrap();
         assert!(md.contains("## Builders") && md.contains("**"));
+        assert!(md.contains("## What a volume buys a pair query"));
+        assert!(r.volumes.iter().all(|v| v.verified) && r.volumes.len() == 11);
         // Each part a chapter includes is anchored once, and the run is stamped.
         for part in [
-            "recorded", "fits", "builders", "layouts", "narrow", "advisor",
+            "recorded", "fits", "volumes", "builders", "layouts", "narrow", "advisor",
         ] {
             let (open, close) = (
                 format!("ANCHOR: {part} -->"),

@@ -233,8 +233,8 @@ impl BottomUp {
 /// The merge cost, with lengths scaled by `scale` (1 / the scene's size).
 fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, scale: f32) -> f32 {
     match metric {
-        MergeMetric::SurfaceArea => bv.surface_area_scaled(scale),
-        MergeMetric::Volume => bv.volume_scaled(scale),
+        MergeMetric::SurfaceArea => bv.cost_area_scaled(scale),
+        MergeMetric::Volume => bv.cost_volume_scaled(scale),
     }
 }
 

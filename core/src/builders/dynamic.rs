@@ -154,7 +154,7 @@ pub struct DynamicTree<'s, B> {
 }
 
 fn area<B: BoundingVolume>(b: &B) -> f64 {
-    b.surface_area() as f64
+    b.cost_area_scaled(1.0) as f64
 }
 
 /// The Goldsmith–Salmon cost of `sibling` for a new leaf `bv`: the new

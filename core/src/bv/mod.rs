@@ -30,7 +30,7 @@ mod sphere;
 pub use aabb::Aabb;
 pub use eigen::symmetric_eigen;
 #[cfg(feature = "kdop")]
-pub use kdop::{Dop14, Dop18, Dop26, Kdop};
+pub use kdop::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
 #[cfg(feature = "obb")]
 pub use obb::Obb;
 #[cfg(feature = "sphere")]
@@ -203,9 +203,26 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
     fn volume_scaled(&self, scale: f32) -> f32 {
         self.volume() * scale * scale * scale
     }
-    /// The size measure the "descend the larger volume" rule compares.
+    /// The surface area that builders' costs compare (the SAH, bottom-up
+    /// merges, insertion), lengths scaled as in
+    /// [`surface_area_scaled`](Self::surface_area_scaled). Builders evaluate
+    /// it millions of times, so it must cost about what a box's area costs.
+    /// It is the exact area for every volume but a k-DOP, whose exact area
+    /// clips a polytope (microseconds) and which answers with its enclosing
+    /// box's area instead; `ExactKdop` makes a k-DOP tree use the exact one.
+    fn cost_area_scaled(&self, scale: f32) -> f32 {
+        self.surface_area_scaled(scale)
+    }
+    /// The volume that builders' costs compare (see
+    /// [`cost_area_scaled`](Self::cost_area_scaled)).
+    fn cost_volume_scaled(&self, scale: f32) -> f32 {
+        self.volume_scaled(scale)
+    }
+    /// The size measure the "descend the larger volume" rule compares; cheap
+    /// like [`cost_volume_scaled`](Self::cost_volume_scaled), which it
+    /// defaults to.
     fn size(&self) -> f32 {
-        self.volume()
+        self.cost_volume_scaled(1.0)
     }
     /// The enclosing axis-aligned box.
     fn aabb(&self) -> Aabb;

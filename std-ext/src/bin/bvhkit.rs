@@ -159,6 +159,11 @@ enum Command {
         /// fit table; no files are written.
         #[arg(long)]
         fits_only: bool,
+        /// Only build a tree of every volume type and run the pair query on
+        /// it (build time, SAH, Nv, Np, query time); prints that table, no
+        /// files are written.
+        #[arg(long, conflicts_with = "fits_only")]
+        volumes_only: bool,
     },
     /// Advise a builder, bounding volume, tree representation and traversal
     /// for a scene and workload, and say why. The advice comes from cheap
@@ -394,6 +399,7 @@ fn main() -> ExitCode {
             json,
             mesh,
             fits_only,
+            volumes_only,
         } => {
             let bar = spinner("loading meshes");
             let mut meshes = Vec::new();
@@ -425,6 +431,28 @@ fn main() -> ExitCode {
                     }
                 } else {
                     print!("{}", bvhkit_std::report::render_fits(&fits));
+                }
+                return ExitCode::SUCCESS;
+            }
+            if volumes_only {
+                let rows =
+                    bvhkit_std::report::run_volumes(subdivisions, runs as usize, &meshes, |what| {
+                        bar.set_message(what.to_string())
+                    });
+                bar.finish_and_clear();
+                let rows = match rows {
+                    Ok(rows) => rows,
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                };
+                if json {
+                    if !print_json(&rows) {
+                        return ExitCode::FAILURE;
+                    }
+                } else {
+                    print!("{}", bvhkit_std::volumes::render(&rows));
                 }
                 return ExitCode::SUCCESS;
             }

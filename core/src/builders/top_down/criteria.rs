@@ -60,7 +60,7 @@ pub(super) fn cost<B: BoundingVolume>(
     r: &Aabb,
     nr: u32,
 ) -> f32 {
-    let vol = |b: &Aabb| B::from_aabb(&norm.apply(b)).volume();
+    let vol = |b: &Aabb| B::from_aabb(&norm.apply(b)).cost_volume_scaled(1.0);
     let sah = || {
         (norm.half_area(l) * nl as f32 + norm.half_area(r) * nr as f32)
             / (norm.half_area(parent).max(f32::MIN_POSITIVE) * (nl + nr) as f32)

@@ -372,7 +372,7 @@ impl TopDown {
         let count = range.len() as u32;
         let stop = count <= self.stop.max_leaf_size
             || task.depth >= self.stop.max_depth
-            || (self.stop.min_volume > 0.0 && bv.volume() < self.stop.min_volume);
+            || (self.stop.min_volume > 0.0 && bv.cost_volume_scaled(1.0) < self.stop.min_volume);
         let halves = if stop {
             None
         } else {
@@ -509,7 +509,7 @@ fn containing_children<B: BoundingVolume>(bv: &B, lb: &B, rb: &B) -> B {
     }
     let enlarged = bv.merge(lb).merge(rb);
     let merged = lb.merge(rb);
-    let mut pick = if merged.volume() < enlarged.volume() {
+    let mut pick = if merged.cost_volume_scaled(1.0) < enlarged.cost_volume_scaled(1.0) {
         merged
     } else {
         enlarged
