@@ -415,12 +415,18 @@ mod tests {
                 }
             }
             let sphere = get("sphere", "sah");
-            assert!(num(sphere, "prim_tests") > 2.0 * num(aabb, "prim_tests"), "{scene}");
+            assert!(
+                num(sphere, "prim_tests") > 2.0 * num(aabb, "prim_tests"),
+                "{scene}"
+            );
             let obb = get("obb", "sah");
             let np = num(obb, "prim_tests") / num(aabb, "prim_tests");
             assert!((0.9..1.1).contains(&np), "{scene}: {np}");
             for slow in [obb, sphere] {
-                assert!(num(slow, "query_ms") > 2.0 * num(aabb, "query_ms"), "{scene}");
+                assert!(
+                    num(slow, "query_ms") > 2.0 * num(aabb, "query_ms"),
+                    "{scene}"
+                );
             }
             for (boxed, exact) in [("14-dop", "14-dop-exact"), ("26-dop", "26-dop-exact")] {
                 let Some(e) = v.iter().find(|r| r["volume"] == exact) else {
@@ -429,8 +435,14 @@ mod tests {
                 exact_rows += 1;
                 let b = get(boxed, "ploc-r1");
                 let near = |k: &str| (num(e, k) / num(b, k) - 1.0).abs();
-                assert!(near("sah_cost") < 0.02 && near("bv_tests") < 0.02, "{scene} {exact}");
-                assert!(num(e, "build_ms") > 10.0 * num(b, "build_ms"), "{scene} {exact}");
+                assert!(
+                    near("sah_cost") < 0.02 && near("bv_tests") < 0.02,
+                    "{scene} {exact}"
+                );
+                assert!(
+                    num(e, "build_ms") > 10.0 * num(b, "build_ms"),
+                    "{scene} {exact}"
+                );
             }
         }
         assert_eq!(exact_rows, 4, "the rocks and the dragon have exact rows");

@@ -63,13 +63,13 @@ pub mod transform;
 pub mod tree;
 
 pub use builders::{AxisChoice, BuildReport, OnFailure, Partition, SplitPoint, Stop, TopDown};
-#[cfg(feature = "obb")]
-pub use bv::Obb;
 #[cfg(feature = "sphere")]
 pub use bv::Sphere;
 pub use bv::{symmetric_eigen, Aabb, BoundingVolume, PointSet};
 #[cfg(feature = "kdop")]
 pub use bv::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
+#[cfg(feature = "obb")]
+pub use bv::{Obb, ObbDito};
 pub use error::Error;
 pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};

@@ -16,8 +16,11 @@ use bvhkit::{
 use serde::Serialize;
 use std::time::Instant;
 
-/// Bounding volume names accepted by `--bv`.
-pub const VOLUMES: [&str; 6] = ["aabb", "sphere", "obb", "14-dop", "18-dop", "26-dop"];
+/// Bounding volume names accepted by `--bv`: `obb` fits by PCA, `obb-dito`
+/// by DiTO ([`bvhkit::ObbDito`]).
+pub const VOLUMES: [&str; 7] = [
+    "aabb", "sphere", "obb", "obb-dito", "14-dop", "18-dop", "26-dop",
+];
 
 /// Traversal kinds accepted by `--traversal`.
 pub const TRAVERSALS: [&str; 4] = ["stack", "recursive", "simultaneous", "leaf-directed"];
@@ -171,6 +174,7 @@ pub fn run(input: &Input, opts: &CollideOptions) -> Result<CollideReport, String
         "aabb" => run_with::<Aabb>(input, opts),
         "sphere" => run_with::<Sphere>(input, opts),
         "obb" => run_with::<Obb>(input, opts),
+        "obb-dito" => run_with::<bvhkit::ObbDito>(input, opts),
         "14-dop" => run_with::<Dop14>(input, opts),
         "18-dop" => run_with::<Dop18>(input, opts),
         "26-dop" => run_with::<Dop26>(input, opts),

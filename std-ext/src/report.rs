@@ -723,7 +723,7 @@ mod tests {
         let md = std::fs::read_to_string(&files[0]).unwrap();
         assert!(md.contains("## Builders") && md.contains("**"));
         assert!(md.contains("## What a volume buys a pair query"));
-        assert!(r.volumes.iter().all(|v| v.verified) && r.volumes.len() == 11);
+        assert!(r.volumes.iter().all(|v| v.verified) && r.volumes.len() == 12);
         // Each part a chapter includes is anchored once, and the run is stamped.
         for part in [
             "recorded", "fits", "volumes", "builders", "layouts", "narrow", "advisor",

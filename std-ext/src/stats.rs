@@ -92,6 +92,7 @@ pub fn run(name: &str, mesh: &[Triangle], opts: &StatsOptions) -> Result<StatsRe
         "aabb" => run_with::<Aabb>(name, mesh, opts),
         "sphere" => run_with::<Sphere>(name, mesh, opts),
         "obb" => run_with::<Obb>(name, mesh, opts),
+        "obb-dito" => run_with::<bvhkit::ObbDito>(name, mesh, opts),
         "14-dop" => run_with::<Dop14>(name, mesh, opts),
         "18-dop" => run_with::<Dop18>(name, mesh, opts),
         "26-dop" => run_with::<Dop26>(name, mesh, opts),

@@ -14,8 +14,8 @@ use crate::tour::{self, Builder};
 use crate::{median_time, OwnedBvh};
 use bvhkit::builders::{BottomUp, MergeMetric, Method};
 use bvhkit::{
-    Aabb, BoundingVolume, Counts, Dop14, Dop18, Dop26, ExactKdop, Obb, Pairs, Sphere, TopDown,
-    Triangle,
+    Aabb, BoundingVolume, Counts, Dop14, Dop18, Dop26, ExactKdop, Obb, ObbDito, Pairs, Sphere,
+    TopDown, Triangle,
 };
 use serde::Serialize;
 
@@ -75,6 +75,7 @@ pub fn measure(
         s.row::<Aabb>("sah", sah)?,
         s.row::<Sphere>("sah", sah)?,
         s.row::<Obb>("sah", sah)?,
+        s.row::<ObbDito>("sah", sah)?,
         s.row::<Dop14>("sah", sah)?,
         s.row::<Dop18>("sah", sah)?,
         s.row::<Dop26>("sah", sah)?,
@@ -158,7 +159,7 @@ mod tests {
     fn every_volume_answers_exactly_and_exact_measures_change_only_bottom_up_kdops() {
         let (a, b) = crate::scene::rock_pair(2);
         let rows = measure("rocks", &a, &b, 1, true).unwrap();
-        assert_eq!(rows.len(), 11);
+        assert_eq!(rows.len(), 12);
         assert!(rows.iter().all(|r| r.verified), "{}", render(&rows));
         // Top-down trees of every volume share their topology (the builder
         // scores primitive boxes) and the larger-volume rule compares boxes

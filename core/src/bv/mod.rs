@@ -32,7 +32,7 @@ pub use eigen::symmetric_eigen;
 #[cfg(feature = "kdop")]
 pub use kdop::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
 #[cfg(feature = "obb")]
-pub use obb::Obb;
+pub use obb::{Obb, ObbDito};
 #[cfg(feature = "sphere")]
 pub use sphere::Sphere;
 

@@ -329,27 +329,12 @@ impl PointSet for Points8 {
     }
 }
 
-impl BoundingVolume for Obb {
-    const NAME: &'static str = "obb";
-    const EMPTY: Self = Obb::EMPTY;
-    const ZERO: Self = Obb {
-        center: Vec3::ZERO,
-        axes: [Vec3::ZERO; 3],
-        half_extents: Vec3::ZERO,
-    };
-
-    fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
-        Obb::pca(points)
-    }
-
-    /// PCA of the box centres, then each box's projected interval per axis
-    /// (`c.u +/- sum |u_k| e_k`): `n` boxes instead of `8n` corners.
-    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, union: &Aabb) -> Self {
+impl Obb {
+    /// The box around `boxes` along `axes` (each box's projected interval
+    /// per axis, in `f64`), or the axis-aligned box of `union` when that is
+    /// no larger: the node fit of [`Obb`] (PCA axes) and [`ObbDito`] (DiTO's).
+    fn fit_boxes_along<S: super::BoxSet + ?Sized>(boxes: &S, union: &Aabb, axes: [Vec3; 3]) -> Obb {
         let n = boxes.len();
-        if n == 0 {
-            return Obb::EMPTY;
-        }
-        let axes = Obb::pca_axes(&Centers(boxes));
         let ax = axes.map(|a| a.as_dvec3());
         let interval = |i: usize, center: DVec3| {
             let b = boxes.aabb(i);
@@ -385,6 +370,29 @@ impl BoundingVolume for Obb {
         } else {
             aligned
         }
+    }
+}
+
+impl BoundingVolume for Obb {
+    const NAME: &'static str = "obb";
+    const EMPTY: Self = Obb::EMPTY;
+    const ZERO: Self = Obb {
+        center: Vec3::ZERO,
+        axes: [Vec3::ZERO; 3],
+        half_extents: Vec3::ZERO,
+    };
+
+    fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
+        Obb::pca(points)
+    }
+
+    /// PCA of the box centres, then each box's projected interval per axis
+    /// (`c.u +/- sum |u_k| e_k`): `n` boxes instead of `8n` corners.
+    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, union: &Aabb) -> Self {
+        if boxes.is_empty() {
+            return Obb::EMPTY;
+        }
+        Obb::fit_boxes_along(boxes, union, Obb::pca_axes(&Centers(boxes)))
     }
 
     fn from_aabb(aabb: &Aabb) -> Self {
@@ -540,6 +548,102 @@ fn sat(a: &Obb, b: &Obb) -> bool {
         }
     }
     true
+}
+
+/// An OBB whose fits are DiTO's ([`Obb::dito`] around points; DiTO's axes
+/// over the box centres, then each box's interval, around a node's boxes)
+/// instead of PCA's. A tree built with it is the same shape as an [`Obb`]
+/// tree (top-down builders score primitive boxes) with other node boxes;
+/// everything but the fit is the wrapped [`Obb`]'s.
+///
+/// ```
+/// use bvhkit::{BoundingVolume, Obb, ObbDito};
+/// use glam::{Quat, Vec3};
+/// // A long thin box, turned: DiTO finds its axes from extremal points.
+/// let q = Quat::from_rotation_z(0.5) * Quat::from_rotation_x(0.3);
+/// let pts: Vec<Vec3> = (0..8)
+///     .map(|i| q * Vec3::new([-4.0, 4.0][i & 1], [-1.0, 1.0][i >> 1 & 1], [-0.5, 0.5][i >> 2]))
+///     .collect();
+/// let dito = ObbDito::fit(pts.as_slice());
+/// assert!(pts.iter().all(|&p| dito.contains_point(p)));
+/// assert_eq!(dito.0, Obb::dito(pts.as_slice()));
+/// assert!(dito.volume() < 8.0 * 2.0 * 1.0 * 1.01);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObbDito(pub Obb);
+
+impl BoundingVolume for ObbDito {
+    const NAME: &'static str = "obb-dito";
+    const EMPTY: Self = ObbDito(Obb::EMPTY);
+    const ZERO: Self = ObbDito(<Obb as BoundingVolume>::ZERO);
+
+    fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
+        ObbDito(Obb::dito(points))
+    }
+    fn fit_boxes<S: super::BoxSet + ?Sized>(boxes: &S, union: &Aabb) -> Self {
+        if boxes.is_empty() {
+            return Self::EMPTY;
+        }
+        let axes = Obb::dito(&Centers(boxes)).axes;
+        ObbDito(Obb::fit_boxes_along(boxes, union, axes))
+    }
+    fn from_aabb(aabb: &Aabb) -> Self {
+        ObbDito(Obb::from_aabb(aabb))
+    }
+    fn merge(&self, other: &Self) -> Self {
+        ObbDito(self.0.merge(&other.0))
+    }
+    fn overlaps(&self, other: &Self) -> bool {
+        self.0.overlaps(&other.0)
+    }
+    fn overlaps_aabb(&self, aabb: &Aabb) -> bool {
+        self.0.overlaps_aabb(aabb)
+    }
+    fn contains_point(&self, p: Vec3) -> bool {
+        self.0.contains_point(p)
+    }
+    fn contains(&self, other: &Self) -> bool {
+        self.0.contains(&other.0)
+    }
+    fn contains_aabb(&self, aabb: &Aabb) -> bool {
+        self.0.contains_aabb(aabb)
+    }
+    fn volume(&self) -> f32 {
+        self.0.volume()
+    }
+    fn surface_area(&self) -> f32 {
+        self.0.surface_area()
+    }
+    fn surface_area_scaled(&self, scale: f32) -> f32 {
+        self.0.surface_area_scaled(scale)
+    }
+    fn volume_scaled(&self, scale: f32) -> f32 {
+        self.0.volume_scaled(scale)
+    }
+    fn cost_area_scaled(&self, scale: f32) -> f32 {
+        self.0.cost_area_scaled(scale)
+    }
+    fn cost_volume_scaled(&self, scale: f32) -> f32 {
+        self.0.cost_volume_scaled(scale)
+    }
+    fn size(&self) -> f32 {
+        self.0.size()
+    }
+    fn aabb(&self) -> Aabb {
+        self.0.aabb()
+    }
+    fn axes(&self) -> Axes {
+        self.0.axes()
+    }
+    fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    fn transformed(&self, t: &crate::Rigid) -> Self {
+        ObbDito(self.0.transformed(t))
+    }
+    fn transformed_with_boxes(&self, t: &crate::Rigid) -> Self {
+        ObbDito(self.0.transformed_with_boxes(t))
+    }
 }
 
 #[cfg(test)]
