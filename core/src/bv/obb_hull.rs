@@ -20,7 +20,7 @@
 //! hull of the face-flush fit is built in a caller's scratch slice.
 
 use super::obb::orthonormal;
-use super::{BoundingVolume, Obb};
+use super::Obb;
 use crate::Error;
 use glam::{DMat3, DVec2, DVec3, Vec2, Vec3};
 use robust::{orient2d, Coord};
@@ -430,6 +430,7 @@ fn min_area_rectangle(hull: &[Vec2]) -> Rectangle {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::BoundingVolume;
     use glam::Quat;
 
     /// The 12 triangles of a box over corners numbered `x + 2y + 4z`.
