@@ -8,6 +8,7 @@
 //! triangles, each as a signed tetrahedron with the hull's centroid.
 
 use bvhkit::glam::{DVec3, Vec3};
+use std::collections::HashSet;
 
 /// A convex hull as a triangle mesh.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -20,7 +21,9 @@ pub struct Mesh {
 }
 
 /// The convex hull of `points` as vertices and triangles; `None` when
-/// quickhull fails (a NaN, or a set it finds nearly coplanar).
+/// quickhull fails (a NaN, or a set it finds nearly coplanar) or gives a
+/// vertex that is not one of `points` (checked: it happens on some
+/// two-point sets).
 ///
 /// Degenerate sets come back as quickhull builds them: a point or a segment
 /// as triangles of zero area (`[0, 1, 0]`), a flat set sometimes as a
@@ -48,8 +51,20 @@ pub fn mesh(points: &[Vec3]) -> Option<Mesh> {
         .collect();
     let hull = quickhull::ConvexTriangleMesh::try_from_points(&pts, None).ok()?;
     let (vertices, triangles) = hull.into_parts();
-    Some(Mesh {
-        vertices: vertices.iter().map(|v| Vec3::new(v.x, v.y, v.z)).collect(),
+    let vertices: Vec<Vec3> = vertices.iter().map(|v| Vec3::new(v.x, v.y, v.z)).collect();
+    // Checked, not trusted: quickhull 0.1 answers some two-point sets with
+    // a "segment" from the origin to the origin (its extremes start there,
+    // and a NaN direction never moves them). A vertex that is no input
+    // point, or a triangle past the vertices, means no hull.
+    let bits = |p: &Vec3| p.to_array().map(f32::to_bits);
+    let inputs: HashSet<[u32; 3]> = points.iter().map(bits).collect();
+    let valid = vertices.iter().all(|v| inputs.contains(&bits(v)))
+        && triangles
+            .iter()
+            .flatten()
+            .all(|&k| (k as usize) < vertices.len());
+    valid.then_some(Mesh {
+        vertices,
         triangles,
     })
 }
@@ -90,5 +105,37 @@ impl Mesh {
             .sum();
         let v = six_v.abs() / 6.0;
         (v > 0.0).then_some(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every hull vertex is an input point, or there is no hull. Quickhull
+    /// 0.1 answered this segment (found by the property test of the hull
+    /// fits) with the origin, twice: its segment case starts its extremes
+    /// at the origin and a NaN direction never moves them.
+    #[test]
+    fn hull_vertices_are_input_points() {
+        let sets: [&[Vec3]; 3] = [
+            &[
+                Vec3::new(-1.9400345, -2.136965, 0.0),
+                Vec3::new(-1.3193092, 1.509896, 0.0),
+            ],
+            &[
+                Vec3::new(100001.086, -50004.363, 24995.291) * 1e-30,
+                Vec3::new(99998.914, -50000.43, 24998.924) * 1e-30,
+            ],
+            &[Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::splat(0.2)],
+        ];
+        for pts in sets {
+            if let Some(hull) = mesh(pts) {
+                for v in &hull.vertices {
+                    assert!(pts.contains(v), "{v:?} is not one of {pts:?}");
+                }
+            }
+        }
+        assert_eq!(mesh(sets[2]).map(|h| h.vertices.len()), Some(4));
     }
 }
