@@ -243,7 +243,7 @@ fn surface_axes(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Option<[Vec3; 3]> 
     for tri in triangles {
         let [a, b, c] = tri.map(|k| frame.local(vertices[k as usize]));
         let ai = 0.5 * (b - a).cross(c - a).length();
-        if !(ai > 0.0) {
+        if ai <= 0.0 {
             continue;
         }
         let m = (a + b + c) / 3.0;
@@ -253,7 +253,7 @@ fn surface_axes(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Option<[Vec3; 3]> 
         // A/12 (9 m m^T + a a^T + b b^T + c c^T).
         second += (outer(m) * 9.0 + outer(a) + outer(b) + outer(c)) * (ai / 12.0);
     }
-    if !(area > 0.0) {
+    if area <= 0.0 {
         return None;
     }
     let mean = first / area;
@@ -552,7 +552,7 @@ mod tests {
         }
         // The flat set with its two-sided hull: the flat box of the
         // smallest rectangle (2 sqrt 2 along the tilted x, 2 along y).
-        let f = Obb::face_flush(&plane, &sets[4].1, &mut scratch).unwrap();
+        let f = Obb::face_flush(&plane, sets[4].1, &mut scratch).unwrap();
         let e = f.half_extents * 2.0;
         let mut e = [e.x, e.y, e.z];
         e.sort_by(f32::total_cmp);
