@@ -108,6 +108,24 @@ pub enum Error {
         /// Nodes the tree really has.
         nodes: usize,
     },
+    /// A triangle of a mesh given by indices (the convex hull of the
+    /// [`Obb::pca_hull`](crate::Obb::pca_hull) and
+    /// [`Obb::face_flush`](crate::Obb::face_flush) fits) names a vertex past
+    /// the end of the vertex slice.
+    VertexIndexOutOfRange {
+        /// Index of the first such triangle.
+        triangle: usize,
+        /// Number of vertices given.
+        vertices: usize,
+    },
+    /// A scratch buffer given by the caller is too small for the input
+    /// (see [`Obb::face_flush_scratch_len`](crate::Obb::face_flush_scratch_len)).
+    ScratchCapacity {
+        /// Entries needed.
+        needed: usize,
+        /// Entries the caller provided.
+        available: usize,
+    },
     /// A builder option is out of its documented range.
     InvalidConfig(&'static str),
     /// A query's own input is unusable: a region, ray or point with a NaN or
@@ -138,6 +156,8 @@ impl Error {
             Error::FieldOverflow { .. } => "a value does not fit the layout's field",
             Error::FarLinkCapacity { .. } => "far-link table too small",
             Error::SparseTree { .. } => "tree too unbalanced for the implicit array",
+            Error::VertexIndexOutOfRange { .. } => "a triangle names a vertex that does not exist",
+            Error::ScratchCapacity { .. } => "scratch buffer too small",
             Error::InvalidConfig(what) | Error::InvalidQuery(what) | Error::InvalidTree(what) => {
                 what
             }
@@ -194,6 +214,14 @@ impl fmt::Display for Error {
                 f,
                 "the implicit array would need {slots} slots for {nodes} nodes; \
                  the tree is too unbalanced for it"
+            ),
+            Error::VertexIndexOutOfRange { triangle, vertices } => write!(
+                f,
+                "triangle {triangle} names a vertex past the {vertices} given"
+            ),
+            Error::ScratchCapacity { needed, available } => write!(
+                f,
+                "scratch buffer too small: need {needed} entries, have {available}"
             ),
             Error::InvalidConfig(what) => write!(f, "invalid configuration: {what}"),
             Error::InvalidQuery(what) => write!(f, "invalid query: {what}"),
@@ -259,6 +287,14 @@ mod tests {
                 available: 0,
             },
             Error::SparseTree { slots: 0, nodes: 0 },
+            Error::VertexIndexOutOfRange {
+                triangle: 0,
+                vertices: 0,
+            },
+            Error::ScratchCapacity {
+                needed: 0,
+                available: 0,
+            },
             Error::InvalidConfig("bad config"),
             Error::InvalidQuery("bad query"),
             Error::InvalidTree("bad tree"),

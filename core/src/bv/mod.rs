@@ -8,7 +8,7 @@
 //! |---|---|---|---|
 //! | [`Aabb`] | cheapest | loose on rotated shapes | min/max |
 //! | [`Sphere`] | cheap | loose on long shapes | Ritter, refined Ritter, exact Welzl |
-//! | [`Obb`] | expensive (15 axes) | tight on rotated shapes | PCA |
+//! | [`Obb`] | expensive (15 axes) | tight on rotated shapes | PCA, DiTO; from a hull: surface PCA, face-flush |
 //! | [`Kdop`] | k/2 interval tests | between AABB and hull | min/max along fixed directions |
 //!
 //! Every fit is *conservative in `f32`*: the fitting code computes in `f64` and
@@ -22,6 +22,8 @@ mod eigen;
 mod kdop;
 #[cfg(feature = "obb")]
 mod obb;
+#[cfg(feature = "obb")]
+mod obb_hull;
 #[cfg(feature = "kdop")]
 mod polytope;
 #[cfg(feature = "sphere")]

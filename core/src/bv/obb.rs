@@ -295,7 +295,7 @@ impl Obb {
 }
 
 /// Gram-Schmidt in f64, then round to f32 unit vectors; a right-handed frame.
-fn orthonormal(m: DMat3) -> [Vec3; 3] {
+pub(super) fn orthonormal(m: DMat3) -> [Vec3; 3] {
     let mut a = m.x_axis.normalize_or(DVec3::X);
     if !a.is_finite() {
         a = DVec3::X;

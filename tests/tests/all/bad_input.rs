@@ -194,6 +194,14 @@ fn every_error_has_a_message() {
             capacity: 64,
         },
         Error::PrimitiveCountMismatch { tree: 9, given: 1 },
+        Error::VertexIndexOutOfRange {
+            triangle: 2,
+            vertices: 8,
+        },
+        Error::ScratchCapacity {
+            needed: 16,
+            available: 4,
+        },
         Error::InvalidConfig("x"),
         Error::InvalidTree("y"),
     ];

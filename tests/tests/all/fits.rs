@@ -197,3 +197,120 @@ fn kdop_is_tighter_than_its_box_on_a_diagonal_triangle() {
     assert!(Aabb::fit(&tri).contains_point(outside));
     assert!(!d.contains_point(outside));
 }
+
+/// The convex hull of `pts` from quickhull, its triangles re-indexed into
+/// `pts` itself (quickhull's vertices are input points, bit for bit), so
+/// the hull fits get every point as a vertex and must contain them all.
+/// No hull (quickhull refuses a NaN or a nearly flat set): no triangles,
+/// which the fits document as their fallback to `Obb::pca`.
+fn hull_of(pts: &[Vec3]) -> Vec<[u32; 3]> {
+    let Some(hull) = bvhkit_std::hull::mesh(pts) else {
+        return Vec::new();
+    };
+    let index = |v: Vec3| {
+        pts.iter()
+            .position(|p| p.to_array().map(f32::to_bits) == v.to_array().map(f32::to_bits))
+    };
+    hull.triangles
+        .iter()
+        .map(|t| {
+            t.map(|k| {
+                index(hull.vertices[k as usize]).expect("a hull vertex is an input point") as u32
+            })
+        })
+        .collect()
+}
+
+/// Both hull fits, on `pts` with their hull's triangles.
+fn hull_fits(pts: &[Vec3]) -> (Vec<[u32; 3]>, Obb, Obb) {
+    let tris = hull_of(pts);
+    let mut scratch = vec![bvhkit::glam::Vec2::ZERO; Obb::face_flush_scratch_len(pts.len())];
+    let p = Obb::pca_hull(pts, &tris).expect("finite points, indices in range");
+    let f = Obb::face_flush(pts, &tris, &mut scratch).expect("scratch of the documented length");
+    (tris, p, f)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The hull fits contain every point, near and far (1e5), on general,
+    /// collinear, coplanar, single-point and clustered sets, and fall back
+    /// to `Obb::pca` where quickhull gives no hull.
+    #[test]
+    fn hull_fits_contain_their_points(pts in points()) {
+        let (tris, p, f) = hull_fits(&pts);
+        all_inside(&p, &pts)?;
+        all_inside(&f, &pts)?;
+        if tris.is_empty() {
+            prop_assert_eq!(p, Obb::pca(pts.as_slice()));
+            prop_assert_eq!(f, Obb::pca(pts.as_slice()));
+        }
+    }
+
+    /// The same at 1e30 and 1e-30: every point inside, a finite box.
+    #[test]
+    fn hull_fits_contain_huge_point_sets(pts in points(), scale in prop_oneof![Just(1e30f32), Just(1e-30f32)]) {
+        let pts: Vec<Vec3> = pts.iter().map(|p| *p * scale).collect();
+        let (_, p, f) = hull_fits(&pts);
+        for obb in [p, f] {
+            all_inside(&obb, &pts)?;
+            prop_assert!(obb.half_extents.is_finite() && obb.center.is_finite(), "{obb:?}");
+        }
+    }
+
+    /// Face-flush is the smallest box flush with a hull face: brute force
+    /// over every hull face and every direction in its plane between two
+    /// points (the minimum rectangle has a side along a 2-D hull edge,
+    /// which joins two projected points) finds none smaller, up to the
+    /// `f32` rounding of axes and of the scratch's 2-D points.
+    #[test]
+    fn face_flush_is_the_smallest_face_flush_box(
+        pts in prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0).prop_map(|(x, y, z)| Vec3::new(x, y, z)), 4..14),
+    ) {
+        let (tris, _, f) = hull_fits(&pts);
+        let volume = |o: &Obb| (o.half_extents.max(Vec3::ZERO) * 2.0).as_dvec3().to_array().iter().product::<f64>();
+        let mut brute = volume(&Obb::fit_with_axes(pts.as_slice(), [Vec3::X, Vec3::Y, Vec3::Z]));
+        for t in &tris {
+            let [a, b, c] = t.map(|k| pts[k as usize].as_dvec3());
+            let n = (b - a).cross(c - a).normalize_or_zero();
+            if n == bvhkit::glam::DVec3::ZERO {
+                continue;
+            }
+            for p in &pts {
+                for q in &pts {
+                    let d = q.as_dvec3() - p.as_dvec3();
+                    let u = (d - n * n.dot(d)).normalize_or_zero();
+                    if u == bvhkit::glam::DVec3::ZERO {
+                        continue;
+                    }
+                    let axes = [u, n.cross(u), n].map(|a| a.as_vec3());
+                    brute = brute.min(volume(&Obb::fit_with_axes(pts.as_slice(), axes)));
+                }
+            }
+        }
+        prop_assert!(volume(&f) <= brute * (1.0 + 1e-4) + 1e-9, "face-flush {} > brute force {}", volume(&f), brute);
+    }
+}
+
+/// The two sets the property tests found quickhull answering with the
+/// origin as a hull vertex: now no hull, so both fits fall back to PCA.
+#[test]
+fn hull_fits_on_the_two_point_sets_quickhull_got_wrong() {
+    for pts in [
+        vec![
+            Vec3::new(-1.9400345, -2.136965, 0.0),
+            Vec3::new(-1.3193092, 1.509896, 0.0),
+        ],
+        vec![
+            Vec3::new(100001.086, -50004.363, 24995.291) * 1e-30,
+            Vec3::new(99998.914, -50000.43, 24998.924) * 1e-30,
+        ],
+    ] {
+        let (tris, p, f) = hull_fits(&pts);
+        assert!(tris.is_empty());
+        assert_eq!((p, f), (Obb::pca(pts.as_slice()), Obb::pca(pts.as_slice())));
+        assert!(pts
+            .iter()
+            .all(|&q| p.contains_point(q) && f.contains_point(q)));
+    }
+}
