@@ -541,6 +541,23 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
         &pts,
     )
     .map_err(err)?;
+    let volumes_svg = dir.join("volumes.svg");
+    let pts: Vec<_> = r
+        .volumes
+        .iter()
+        .filter(|v| v.scene == "rocks")
+        .map(|v| {
+            let label = format!("{} {}", v.volume, v.builder);
+            (v.build_ms, v.query_ms, label, false)
+        })
+        .collect();
+    scatter(
+        &volumes_svg,
+        "Each volume's tree on the rocks: build time against pair-query time",
+        ("build time, ms (log)", "pair query, ms"),
+        &pts,
+    )
+    .map_err(err)?;
     let builders_svg = dir.join("builders.svg");
     let pts: Vec<_> = r
         .builders
@@ -614,7 +631,7 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
     md += "## Fitting a volume\n\nOne volume around all vertices of each mesh. Looseness is the volume over the volume of the mesh's convex hull (the smallest convex volume there is; `-` where the hull is flat), and over the smallest volume any method found. A k-DOP's volume is its polytope's, not its box's. The two hull fits (`obb-pca-hull`, `obb-face-flush`) start from the convex hull: `ms` is the fit (with its axes refitted over every vertex), `hull ms` the hull itself.\n\n![fits](fits.svg)\n\n";
     let table = render_fits(&r.fits);
     md += &anchored("fits", &table);
-    md += "\n## What a volume buys a pair query\n\nA tree of each volume type over the same scene: build time, SAH cost (each volume's own exact measures), and the default pair query's volume tests (Nv), primitive tests (Np) and time, checked against brute force. A top-down build scores primitive boxes whatever the volume, so every top-down tree has the same shape. Under PLOC, k-DOPs compare merges by their enclosing boxes' areas (the default); the `-exact` rows compare the polytopes' exact areas and, in the larger-volume descent, volumes.\n\n";
+    md += "\n## What a volume buys a pair query\n\nA tree of each volume type over the same scene: build time, SAH cost (each volume's own exact measures), and the default pair query's volume tests (Nv), primitive tests (Np) and time, checked against brute force. A top-down build scores primitive boxes whatever the volume, so every top-down tree has the same shape. Under PLOC, k-DOPs compare merges by their enclosing boxes' areas (the default); the `-exact` rows compare the polytopes' exact areas and, in the larger-volume descent, volumes.\n\n![volumes](volumes.svg)\n\n";
     md += &anchored("volumes", &volumes::render(&r.volumes));
     md += "\n## Builders\n\nBuild time against tree quality (SAH cost) and the pair-query time it buys; **bold** rows are on the Pareto front of the three.\n\n![builders](builders.svg)\n\nThe plot shows the generated rocks; real meshes given with `--mesh` have their own rows (each against a copy of itself shifted by a twentieth of its size), with the Pareto front marked per scene.\n\n";
     let mut table = String::from(
@@ -654,6 +671,7 @@ pub fn write(r: &Report, dir: &Path) -> Result<Vec<PathBuf>, String> {
         md_path,
         json_path,
         fits_svg,
+        volumes_svg,
         builders_svg,
         layouts_svg,
         narrow_svg,

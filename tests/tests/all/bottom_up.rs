@@ -67,7 +67,10 @@ proptest! {
         check::<Aabb>(&cfg, &a, &b, &region)?;
         check::<Sphere>(&cfg, &a, &b, &region)?;
         check::<Obb>(&cfg, &a, &b, &region)?;
+        check::<bvhkit::ObbDito>(&cfg, &a, &b, &region)?;
         check::<Dop14>(&cfg, &a, &b, &region)?;
+        // Exact k-DOP measures steer the merges: another tree, the same answers.
+        check::<bvhkit::ExactKdop<7>>(&cfg, &a, &b, &region)?;
     }
 }
 

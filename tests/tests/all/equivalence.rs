@@ -29,7 +29,9 @@ proptest! {
 
     #[test]
     fn obb_trees_match_brute_force(cfg in any_top_down(), a in scene(30), b in scene(30), r in (0.0f32..1.0, 0.0f32..1.0)) {
-        check_against_brute_force::<Obb>(&cfg, &a, &b, &region_in(&a, r.0, r.1))?;
+        let region = region_in(&a, r.0, r.1);
+        check_against_brute_force::<Obb>(&cfg, &a, &b, &region)?;
+        check_against_brute_force::<bvhkit::ObbDito>(&cfg, &a, &b, &region)?;
     }
 
     #[test]
@@ -108,6 +110,7 @@ proptest! {
         check_moved::<Aabb>(&cfg, &a, &b, m)?;
         check_moved::<Sphere>(&cfg, &a, &b, m)?;
         check_moved::<Obb>(&cfg, &a, &b, m)?;
+        check_moved::<bvhkit::ObbDito>(&cfg, &a, &b, m)?;
         check_moved::<Dop14>(&cfg, &a, &b, m)?;
     }
 

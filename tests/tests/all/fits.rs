@@ -135,6 +135,7 @@ proptest! {
         check::<Aabb>(&a, &b, t)?;
         check::<Sphere>(&a, &b, t)?;
         check::<Obb>(&a, &b, t)?;
+        check::<bvhkit::ObbDito>(&a, &b, t)?;
         check::<Dop14>(&a, &b, t)?;
         check::<Dop26>(&a, &b, t)?;
     }
@@ -157,6 +158,7 @@ proptest! {
         check::<Aabb>(&b)?;
         check::<Sphere>(&b)?;
         check::<Obb>(&b)?;
+        check::<bvhkit::ObbDito>(&b)?;
         check::<Kdop<3>>(&b)?;
         check::<Dop14>(&b)?;
         check::<Dop18>(&b)?;

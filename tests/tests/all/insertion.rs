@@ -168,6 +168,7 @@ proptest! {
         run::<Sphere>(cfg, &ops, &other)?;
         run::<Obb>(cfg, &ops, &other)?;
         run::<Dop14>(cfg, &ops, &other)?;
+        run::<bvhkit::ExactKdop<7>>(cfg, &ops, &other)?;
     }
 
     #[test]
