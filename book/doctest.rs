@@ -648,11 +648,22 @@ mod tests {
             "minimal",
             "minimal,print-display",
             "minimal,print-debug",
+            "minimal,print-float",
+            "minimal,init-empty",
+            "minimal,strategies",
             "typical",
             "everything",
         ] {
             assert_eq!(row(set).len(), 6, "{set}");
         }
+        // Each step's own stack high-water mark, in bytes.
+        let step = |set: &str, step: &str| -> u64 {
+            let line = table
+                .lines()
+                .find(|l| l.starts_with(&format!("| {set} | {step} |")))
+                .unwrap_or_else(|| panic!("no step {step} of {set}"));
+            line.split('|').nth(3).unwrap().trim().parse().unwrap()
+        };
         let minimal = row("minimal");
         assert!(
             minimal[1] <= 64 * 1024 && minimal[4] <= 6 * 1024,
@@ -671,7 +682,23 @@ mod tests {
             }
         };
         let kb = |n: u64| format!("{:.1} KB", n as f64 / 1000.0);
+        let more = |set: &str| kb(row(set)[0] - minimal[0]);
         for claim in [
+            format!("takes {} more flash.", more("minimal,init-empty")),
+            format!(
+                "takes\n  {} more flash than `minimal`",
+                more("minimal,print-float")
+            ),
+            format!(
+                "would add {} (`minimal,strategies`)",
+                more("minimal,strategies")
+            ),
+            format!("`Node::ZERO` {} of initialised", more("minimal,init-empty")),
+            format!(
+                "B moved: {}\n  (`aabb-moved` in the per-step table) against {} for",
+                kb(step("typical", "aabb-moved")),
+                kb(step("typical", "aabb-dfs"))
+            ),
             format!("its numbers, {display} B more"),
             format!("{} more than `as_str` ({} B)", kb(debug), thousands(debug)),
             format!(

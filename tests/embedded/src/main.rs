@@ -39,8 +39,14 @@ mod buffers {
         bvhkit::glam::Vec3::ZERO,
         bvhkit::glam::Vec3::ZERO,
     ); N];
-    pub static mut NODES_A: [Node<Aabb>; max_nodes(N)] = [Node::ZERO; max_nodes(N)];
-    pub static mut NODES_B: [Node<Aabb>; max_nodes(N)] = [Node::ZERO; max_nodes(N)];
+    /// Zero bits go to `.bss`; `init-empty` measures what `Node::EMPTY`
+    /// (infinite bounds: initialised data, stored in flash) costs instead.
+    #[cfg(not(feature = "init-empty"))]
+    const INIT: Node<Aabb> = Node::ZERO;
+    #[cfg(feature = "init-empty")]
+    const INIT: Node<Aabb> = Node::EMPTY;
+    pub static mut NODES_A: [Node<Aabb>; max_nodes(N)] = [INIT; max_nodes(N)];
+    pub static mut NODES_B: [Node<Aabb>; max_nodes(N)] = [INIT; max_nodes(N)];
     pub static mut INDEX_A: [u32; N] = [0; N];
     pub static mut INDEX_B: [u32; N] = [0; N];
 }
@@ -193,7 +199,13 @@ fn print_error(e: bvhkit::Error) {
     hprintln!("error {:?}", e);
     #[cfg(all(feature = "print-display", not(feature = "print-debug")))]
     hprintln!("error {}", e);
-    #[cfg(not(any(feature = "print-debug", feature = "print-display")))]
+    #[cfg(feature = "print-float")]
+    hprintln!("error {} near {}", e.as_str(), core::hint::black_box(1.5f32));
+    #[cfg(not(any(
+        feature = "print-debug",
+        feature = "print-display",
+        feature = "print-float"
+    )))]
     hprintln!("error {}", e.as_str());
 }
 
