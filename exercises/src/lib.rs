@@ -578,6 +578,31 @@ pub trait Exercises {
     /// nodes), nodes counting the half's own root. Return the node where
     /// each half's other nodes start, `(left, right)`.
     fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32);
+
+    /// Exercise 40a: leaf collapse, the price of the best cut. Every
+    /// subtree of `tree` holding at most `max_leaf_size` primitives may
+    /// become one leaf. Costs, with `A` a node's `Aabb::surface_area()` in
+    /// `f64`: a leaf of `k` primitives costs `k * A`; an internal node kept
+    /// as it is costs `traversal_cost * A` plus its children's costs. Each
+    /// node takes the cheaper of the two (a tie makes a leaf), its children
+    /// priced the same way first. Return the root's cost: the SAH cost of
+    /// the cheapest tree the collapse can make, the root's own visit
+    /// included. Existing leaves may hold several primitives already; an
+    /// empty tree costs 0.
+    fn best_cut_cost(&self, tree: &Bvh<Aabb>, max_leaf_size: u32, traversal_cost: f64) -> f64;
+
+    /// Exercise 40b: the leaves of that cheapest tree, each as its run of
+    /// the index array `(first, count)`, sorted by `first`. A node that
+    /// becomes a leaf hides the nodes below it: report only the topmost.
+    /// In the trees the grader gives, every subtree's primitives are one
+    /// run of the index array (as every builder of the library writes
+    /// them).
+    fn collapsed_leaves(
+        &self,
+        tree: &Bvh<Aabb>,
+        max_leaf_size: u32,
+        traversal_cost: f64,
+    ) -> Vec<(u32, u32)>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

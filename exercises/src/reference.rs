@@ -953,6 +953,61 @@ impl Exercises for Reference {
             (pair + 2 + (right.1 - 1), pair + 2)
         }
     }
+
+    fn best_cut_cost(&self, tree: &Bvh<Aabb>, max_leaf_size: u32, traversal_cost: f64) -> f64 {
+        if tree.node_count() == 0 {
+            return 0.0;
+        }
+        best_cut(tree.nodes(), 0, max_leaf_size, traversal_cost).0
+    }
+
+    fn collapsed_leaves(
+        &self,
+        tree: &Bvh<Aabb>,
+        max_leaf_size: u32,
+        traversal_cost: f64,
+    ) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        if tree.node_count() > 0 {
+            collect_cut(tree.nodes(), 0, max_leaf_size, traversal_cost, &mut out);
+        }
+        out.sort_unstable();
+        out
+    }
+}
+
+/// Exercise 40: `(best cost, primitives, first entry, cheaper as a leaf)`
+/// of the subtree under `x`.
+fn best_cut(nodes: &[Node<Aabb>], x: u32, max: u32, ct: f64) -> (f64, u32, u32, bool) {
+    let n = &nodes[x as usize];
+    let area = f64::from(n.bv.surface_area());
+    match n.children() {
+        None => (f64::from(n.count) * area, n.count, n.first, true),
+        Some((l, r)) => {
+            let (lc, ln, lf, _) = best_cut(nodes, l, max, ct);
+            let (rc, rn, rf, _) = best_cut(nodes, r, max, ct);
+            let count = ln + rn;
+            let keep = ct * area + lc + rc;
+            let leaf = f64::from(count) * area;
+            if count <= max && leaf <= keep {
+                (leaf, count, lf.min(rf), true)
+            } else {
+                (keep, count, lf.min(rf), false)
+            }
+        }
+    }
+}
+
+/// Exercise 40b: the topmost nodes cheaper as leaves, below `x`.
+fn collect_cut(nodes: &[Node<Aabb>], x: u32, max: u32, ct: f64, out: &mut Vec<(u32, u32)>) {
+    let (_, count, first, leaf) = best_cut(nodes, x, max, ct);
+    match nodes[x as usize].children() {
+        Some((l, r)) if !leaf => {
+            collect_cut(nodes, l, max, ct, out);
+            collect_cut(nodes, r, max, ct, out);
+        }
+        _ => out.push((first, count)),
+    }
 }
 
 /// The area of a planar polygon: half the length of the sum of the

@@ -514,4 +514,26 @@ impl Exercises for Student {
         let _ = (pair, left, right);
         todo!("exercise 39b")
     }
+
+    fn best_cut_cost(&self, tree: &Bvh<Aabb>, max_leaf_size: u32, traversal_cost: f64) -> f64 {
+        // Hint: a recursive helper returning (best cost, primitives) for a
+        // node does it all: a leaf's cost is count * area; an internal node
+        // compares traversal_cost * area + both children's *best* costs
+        // with count * area, the latter only when count <= max_leaf_size.
+        let _ = (tree, max_leaf_size, traversal_cost);
+        todo!("exercise 40a")
+    }
+
+    fn collapsed_leaves(
+        &self,
+        tree: &Bvh<Aabb>,
+        max_leaf_size: u32,
+        traversal_cost: f64,
+    ) -> Vec<(u32, u32)> {
+        // Hint: walk down from the root with the costs of 40a; where a node
+        // is cheaper as a leaf, report its run (the smallest `first` of the
+        // leaves below it, and their total count) and do not go further.
+        let _ = (tree, max_leaf_size, traversal_cost);
+        todo!("exercise 40b")
+    }
 }

@@ -10,7 +10,7 @@
 //! Run: `cargo bench -p bvhkit-std --bench report` (about fifteen minutes),
 //! or filter, e.g. `cargo bench -p bvhkit-std --bench report -- layout`.
 
-use bvhkit::builders::{BottomUp, MergeMetric, Method, PRESETS};
+use bvhkit::builders::{BottomUp, Method, PRESETS};
 use bvhkit::glam::Vec3;
 use bvhkit::layout::{
     Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
@@ -55,7 +55,7 @@ fn builders(c: &mut Criterion) {
     }
     let ploc = BottomUp {
         method: Method::Ploc { radius: 4 },
-        metric: MergeMetric::SurfaceArea,
+        ..BottomUp::default()
     };
     build.bench_function("ploc-r4", |bch| {
         bch.iter(|| OwnedBvh::<Aabb>::build_bottom_up(&ploc, black_box(&a)).unwrap())

@@ -22,6 +22,7 @@ fn main() {
                         margin: 0.0,
                     },
                     order,
+                    ..Insertion::default()
                 };
                 let t = std::time::Instant::now();
                 match OwnedBvh::<Aabb>::build_by_insertion(&b, &rock) {

@@ -1,6 +1,13 @@
 //! Builds the default rock repeatedly (for profilers): `cargo run --release -p bvhkit-std --example profile_build`.
-use bvhkit::{builders::PrimitiveRef, Aabb, Node, TopDown};
+//! `PLOC=r` builds bottom-up with PLOC of radius `r` instead (with the
+//! default leaf collapse, or none with `COLLAPSE=none`), in the same caller
+//! buffers each time.
+use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, Collapse, Method, PrimitiveRef};
+use bvhkit::{Aabb, Node, TopDown};
 fn main() {
+    if let Some(radius) = std::env::var("PLOC").ok().and_then(|v| v.parse().ok()) {
+        return ploc(radius);
+    }
     let tris = bvhkit_std::scene::rock(6, 1);
     let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
     let mut idx = vec![0u32; tris.len()];
@@ -42,6 +49,50 @@ fn main() {
     println!(
         "sah {sah:.3}, {} nodes, {:.2} ms min, {:.2} ms median per build",
         total / reps,
+        times[0],
+        times[reps / 2]
+    );
+}
+
+fn ploc(radius: u32) {
+    let tris = bvhkit_std::scene::rock(6, 1);
+    let n = tris.len();
+    let builder = BottomUp {
+        method: Method::Ploc { radius },
+        collapse: match std::env::var("COLLAPSE").as_deref() {
+            Ok("none") => Collapse::None,
+            _ => Collapse::DEFAULT,
+        },
+        ..BottomUp::default()
+    };
+    let (nc, nw, nk) = BottomUp::scratch_len(n);
+    let mut clusters = vec![Cluster::<Aabb>::EMPTY; nc];
+    let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+    let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(n)];
+    let mut idx = vec![0u32; n];
+    let reps: usize = std::env::var("REPS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20);
+    let mut times = Vec::with_capacity(reps);
+    let mut stats = None;
+    for _ in 0..reps {
+        let mut scratch = BottomUpScratch {
+            clusters: &mut clusters,
+            work: &mut work,
+            keys: &mut keys,
+        };
+        let t = std::time::Instant::now();
+        let bvh = builder
+            .build(&tris, &mut nodes, &mut idx, &mut scratch)
+            .unwrap();
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        stats = Some((bvh.node_count(), bvh.stats().sah_cost));
+    }
+    times.sort_by(f64::total_cmp);
+    let (count, sah) = stats.unwrap();
+    println!(
+        "PLOC r{radius}, {n} triangles: sah {sah:.3}, {count} nodes, {:.2} ms min, {:.2} ms median per build",
         times[0],
         times[reps / 2]
     );

@@ -19,7 +19,7 @@
 //! ```
 
 use crate::{median_time, scene, tour::Builder};
-use bvhkit::builders::{BottomUp, MergeMetric, Method};
+use bvhkit::builders::{BottomUp, Method};
 use bvhkit::glam::{Quat, Vec3};
 use bvhkit::layout::{
     Implicit, PreNode, Preorder, QuantNode, QuantizedWide, Slot, TriNode, TriNodes, Wide, WideNode,
@@ -258,7 +258,7 @@ impl BuilderChoice {
             BuilderChoice::Median => Builder::TopDown(TopDown::median()),
             BuilderChoice::Ploc => Builder::BottomUp(BottomUp {
                 method: Method::Ploc { radius: 4 },
-                metric: MergeMetric::SurfaceArea,
+                ..BottomUp::default()
             }),
         }
     }

@@ -5,7 +5,8 @@
 
 use crate::OwnedBvh;
 use bvhkit::builders::{
-    BottomUp, DynamicConfig, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
+    BottomUp, Collapse, DynamicConfig, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch,
+    PRESETS,
 };
 use bvhkit::{BoundingVolume, Primitive, TopDown};
 
@@ -59,7 +60,7 @@ pub fn catalogue() -> Vec<(&'static str, &'static str, Builder)> {
     let ploc = |radius| {
         Builder::BottomUp(BottomUp {
             method: Method::Ploc { radius },
-            metric: MergeMetric::SurfaceArea,
+            ..BottomUp::default()
         })
     };
     let insertion = |search, order| {
@@ -69,6 +70,7 @@ pub fn catalogue() -> Vec<(&'static str, &'static str, Builder)> {
                 ..DynamicConfig::default()
             },
             order,
+            collapse: Collapse::default(),
         })
     };
     let shuffled = InsertOrder::Shuffled(0x5eed);

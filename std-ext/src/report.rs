@@ -12,9 +12,7 @@ use crate::near_misses::{self, NarrowRow};
 use crate::tour::{self, Builder};
 use crate::volumes::{self, VolumeRow};
 use crate::{median_time, scene};
-use bvhkit::builders::{
-    BottomUp, InsertOrder, Insertion, MergeMetric, Method, SiblingSearch, PRESETS,
-};
+use bvhkit::builders::{BottomUp, InsertOrder, Insertion, Method, SiblingSearch, PRESETS};
 use bvhkit::glam::{Vec2, Vec3};
 use bvhkit::{Aabb, BoundingVolume, Dop14, Dop18, Dop26, Obb, Sphere, TopDown, Triangle};
 use plotters::prelude::*;
@@ -443,7 +441,7 @@ pub fn builder_candidates() -> Vec<(String, Builder)> {
         "ploc-r4".into(),
         Builder::BottomUp(BottomUp {
             method: Method::Ploc { radius: 4 },
-            metric: MergeMetric::SurfaceArea,
+            ..BottomUp::default()
         }),
     ));
     candidates.push((
@@ -454,6 +452,7 @@ pub fn builder_candidates() -> Vec<(String, Builder)> {
                 search: SiblingSearch::BranchAndBound,
                 ..Default::default()
             },
+            ..Insertion::default()
         }),
     ));
     candidates

@@ -12,7 +12,7 @@
 
 use crate::tour::{self, Builder};
 use crate::{median_time, OwnedBvh};
-use bvhkit::builders::{BottomUp, MergeMetric, Method};
+use bvhkit::builders::{BottomUp, Collapse, MergeMetric, Method};
 use bvhkit::{
     Aabb, BoundingVolume, Counts, Dop14, Dop18, Dop26, ExactKdop, Obb, ObbDito, Pairs, Sphere,
     TopDown, Triangle,
@@ -48,6 +48,7 @@ pub struct VolumeRow {
 pub const BOTTOM_UP: BottomUp = BottomUp {
     method: Method::Ploc { radius: 1 },
     metric: MergeMetric::SurfaceArea,
+    collapse: Collapse::DEFAULT,
 };
 
 /// Every volume on the scene `a` against `b`: each type with the default

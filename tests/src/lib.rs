@@ -404,8 +404,11 @@ pub fn build_bottom_up<B: BoundingVolume, P: Primitive>(
     };
     let mut nodes = vec![Node::<B>::EMPTY; bvhkit::max_nodes(prims.len())];
     let mut idx = vec![0u32; prims.len()];
-    let depth = cfg
-        .build(prims, &mut nodes, &mut idx, &mut scratch)?
-        .depth();
+    let (used, depth) = {
+        let bvh = cfg.build(prims, &mut nodes, &mut idx, &mut scratch)?;
+        (bvh.node_count(), bvh.depth())
+    };
+    // A collapse leaves fewer nodes than the buffer holds.
+    nodes.truncate(used);
     Ok((nodes, idx, depth))
 }

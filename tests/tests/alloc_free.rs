@@ -175,6 +175,7 @@ fn check<B: BoundingVolume + Send + Sync>(failures: &mut Vec<String>) {
                         ..DynamicConfig::default()
                     },
                     order: InsertOrder::Sorted,
+                    ..Insertion::default()
                 };
                 builder
                     .build(&a, &mut storage, &mut order, &mut ins_nodes, &mut ins_idx)

@@ -21,7 +21,7 @@
 //! of this crate runs on.
 
 use super::enclose;
-use super::BuildReport;
+use super::{BuildReport, Collapse};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node, MAX_DEPTH};
@@ -673,6 +673,34 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         nodes: &'a mut [Node<B>],
         indices: &'a mut [u32],
     ) -> Result<Bvh<'a, B>, Error> {
+        self.to_bvh_with(nodes, indices, Collapse::None)
+    }
+
+    /// [`to_bvh`](Self::to_bvh), then `collapse` applied to its leaves: a
+    /// snapshot for queries with up to `max_leaf_size` objects per leaf
+    /// where the SAH says a leaf is cheaper. Same buffers.
+    ///
+    /// ```
+    /// use bvhkit::builders::{Collapse, DynNode, DynamicConfig, DynamicTree};
+    /// use bvhkit::{Aabb, Node};
+    /// use glam::Vec3;
+    /// let mut storage = vec![DynNode::<Aabb>::EMPTY; 199];
+    /// let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default())?;
+    /// for i in 0..100u32 {
+    ///     let o = Vec3::new((i % 10) as f32, (i / 10) as f32, 0.0);
+    ///     tree.insert(i, &Aabb::new(o, o + Vec3::splat(0.9)))?;
+    /// }
+    /// let (mut nodes, mut idx) = (vec![Node::<Aabb>::ZERO; 199], vec![0u32; 100]);
+    /// let bvh = tree.to_bvh_with(&mut nodes, &mut idx, Collapse::default())?;
+    /// assert!(bvh.node_count() < 199 && bvh.primitive_count() == 100);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn to_bvh_with<'a>(
+        &self,
+        nodes: &'a mut [Node<B>],
+        indices: &'a mut [u32],
+        collapse: Collapse,
+    ) -> Result<Bvh<'a, B>, Error> {
         if self.root == NULL {
             return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
         }
@@ -699,14 +727,15 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             };
             (node.bv, kind)
         })?;
+        let done = collapse.apply(nodes, needed, depth)?;
         let bound = crate::tree::index_bound_of(&indices[..n]);
         let report = BuildReport {
             depth_limited: self.forced_rebalances,
-            max_leaf_size: 1,
+            max_leaf_size: collapse.max_leaf_size(),
             ..BuildReport::default()
         };
         Ok(
-            Bvh::from_built_ids(&nodes[..needed], &indices[..n], depth, bound)
+            Bvh::from_built_ids(&nodes[..done.count], &indices[..n], done.depth, bound)
                 .with_build_report(report),
         )
     }
@@ -750,6 +779,8 @@ pub struct Insertion {
     pub config: DynamicConfig,
     /// Insertion order.
     pub order: InsertOrder,
+    /// What becomes of the one-object leaves once every object is in.
+    pub collapse: Collapse,
 }
 
 impl Default for Insertion {
@@ -757,6 +788,7 @@ impl Default for Insertion {
         Insertion {
             config: DynamicConfig::default(),
             order: InsertOrder::Shuffled(0x5eed),
+            collapse: Collapse::default(),
         }
     }
 }
@@ -839,6 +871,6 @@ impl Insertion {
         for &i in order.iter() {
             tree.insert(i, &prims[i as usize].bounds())?;
         }
-        tree.to_bvh(nodes, indices)
+        tree.to_bvh_with(nodes, indices, self.collapse)
     }
 }

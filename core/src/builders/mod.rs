@@ -8,6 +8,8 @@
 
 #[cfg(feature = "bottom-up")]
 mod bottom_up;
+#[cfg(any(feature = "bottom-up", feature = "insertion"))]
+mod collapse;
 #[cfg(feature = "insertion")]
 mod dynamic;
 mod presets;
@@ -18,6 +20,8 @@ mod top_down;
 
 #[cfg(feature = "bottom-up")]
 pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
+#[cfg(any(feature = "bottom-up", feature = "insertion"))]
+pub use collapse::Collapse;
 #[cfg(feature = "insertion")]
 pub use dynamic::{
     DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch, NULL,

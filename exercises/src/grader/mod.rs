@@ -45,6 +45,7 @@ mod ex36_short_links;
 mod ex37_merged_leaves;
 mod ex38_clip_polygon;
 mod ex39_relocate_pieces;
+mod ex40_leaf_collapse;
 #[cfg(test)]
 mod wrong;
 
@@ -73,7 +74,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 39] = [
+pub const EXERCISES: [(u32, &str); 40] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -122,6 +123,7 @@ pub const EXERCISES: [(u32, &str); 39] = [
     ),
     (38, "exact k-DOP measures: polygon clipping"),
     (39, "the parallel build: moving pieces into place"),
+    (40, "leaf collapse: the cheapest cut of a bottom-up tree"),
 ];
 
 /// A score for one exercise.
@@ -181,6 +183,7 @@ pub fn checks() -> Vec<Check> {
         ex37_merged_leaves::checks(),
         ex38_clip_polygon::checks(),
         ex39_relocate_pieces::checks(),
+        ex40_leaf_collapse::checks(),
     ]
     .concat()
 }
@@ -394,7 +397,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 440/440 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 452/452 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -43,6 +43,7 @@ use super::ex36_short_links;
 use super::ex37_merged_leaves;
 use super::ex38_clip_polygon;
 use super::ex39_relocate_pieces;
+use super::ex40_leaf_collapse;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -99,6 +100,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (37, ex37_merged_leaves::wrong::COUNT),
         (38, ex38_clip_polygon::wrong::COUNT),
         (39, ex39_relocate_pieces::wrong::COUNT),
+        (40, ex40_leaf_collapse::wrong::COUNT),
     ]
 }
 
@@ -319,5 +321,16 @@ impl Exercises for Wrong {
     }
     fn piece_bases(&self, pair: u32, left: (u32, u32), right: (u32, u32)) -> (u32, u32) {
         ex39_relocate_pieces::wrong::piece_bases(self.k(39), pair, left, right)
+    }
+    fn best_cut_cost(&self, tree: &Bvh<Aabb>, max_leaf_size: u32, traversal_cost: f64) -> f64 {
+        ex40_leaf_collapse::wrong::best_cut_cost(self.k(40), tree, max_leaf_size, traversal_cost)
+    }
+    fn collapsed_leaves(
+        &self,
+        tree: &Bvh<Aabb>,
+        max_leaf_size: u32,
+        traversal_cost: f64,
+    ) -> Vec<(u32, u32)> {
+        ex40_leaf_collapse::wrong::collapsed_leaves(self.k(40), tree, max_leaf_size, traversal_cost)
     }
 }

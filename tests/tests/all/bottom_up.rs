@@ -1,7 +1,7 @@
 //! Bottom-up builders (exhaustive and PLOC) against brute force, for every
 //! volume type, plus their pitfalls.
 
-use bvhkit::builders::{BottomUp, MergeMetric, Method};
+use bvhkit::builders::{BottomUp, Collapse, MergeMetric, Method};
 use bvhkit::glam::Vec3;
 use bvhkit::{
     brute_force, Aabb, BoundingVolume, Bounds, Dop14, Error, Exact, Obb, PairTraversal, Pairs,
@@ -12,18 +12,28 @@ use proptest::prelude::*;
 
 fn any_bottom_up(max_exhaustive: usize, n: usize) -> impl Strategy<Value = BottomUp> {
     let exhaustive_ok = n <= max_exhaustive;
-    (any::<bool>(), 1u32..20, any::<bool>()).prop_map(move |(exhaustive, radius, area)| BottomUp {
-        method: if exhaustive && exhaustive_ok {
-            Method::Exhaustive
-        } else {
-            Method::Ploc { radius }
+    let collapse = prop_oneof![
+        Just(Collapse::None),
+        (0u32..10, 0.0f32..4.0).prop_map(|(max_leaf_size, traversal_cost)| Collapse::Sah {
+            max_leaf_size,
+            traversal_cost
+        })
+    ];
+    (any::<bool>(), 1u32..20, any::<bool>(), collapse).prop_map(
+        move |(exhaustive, radius, area, collapse)| BottomUp {
+            method: if exhaustive && exhaustive_ok {
+                Method::Exhaustive
+            } else {
+                Method::Ploc { radius }
+            },
+            metric: if area {
+                MergeMetric::SurfaceArea
+            } else {
+                MergeMetric::Volume
+            },
+            collapse,
         },
-        metric: if area {
-            MergeMetric::SurfaceArea
-        } else {
-            MergeMetric::Volume
-        },
-    })
+    )
 }
 
 fn check<B: BoundingVolume>(
@@ -93,7 +103,15 @@ fn tiny_inputs_build() {
         ] {
             let (nodes, idx, depth) = build_bottom_up::<Aabb, _>(&cfg, &tris).unwrap();
             let t = open(&nodes, &idx, &tris);
-            assert_eq!(t.node_count(), 2 * n - 1);
+            // One triangle per leaf; the default collapses these few
+            // neighbours into one leaf (3 * A(2x1x1) = 30 against
+            // 2 * 10 + 2 * 6 + 2 in surface areas, for three).
+            let want = if cfg.collapse == Collapse::None {
+                2 * n - 1
+            } else {
+                1
+            };
+            assert_eq!(t.node_count(), want, "{cfg:?}");
             assert!(depth < n.max(1));
         }
     }
@@ -134,11 +152,16 @@ fn adversarial_scenes_build_and_answer_like_brute_force() {
         BottomUp::default(),
         BottomUp {
             method: Method::Ploc { radius: 1 },
-            metric: MergeMetric::SurfaceArea,
+            collapse: Collapse::None,
+            ..BottomUp::default()
         },
         BottomUp {
             method: Method::Ploc { radius: 16 },
             metric: MergeMetric::Volume,
+            collapse: Collapse::Sah {
+                max_leaf_size: 8,
+                traversal_cost: 3.0,
+            },
         },
     ];
     for (name, scene) in [
@@ -221,7 +244,7 @@ fn bad_input_and_small_buffers_are_errors() {
     ));
     let bad_radius = BottomUp {
         method: Method::Ploc { radius: 0 },
-        metric: MergeMetric::Volume,
+        ..BottomUp::default()
     };
     let tris = [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y); 4];
     assert!(build_bottom_up::<Aabb, _>(&bad_radius, &tris).is_err());
@@ -389,7 +412,9 @@ fn ploc_equals_the_plain_algorithm() {
                 method: Method::Ploc {
                     radius: radius as u32,
                 },
-                metric: MergeMetric::SurfaceArea,
+                // The reference merges only: one primitive per leaf.
+                collapse: Collapse::None,
+                ..BottomUp::default()
             };
             let (nodes, indices, _) = build_bottom_up::<Aabb, _>(&cfg, &boxes).unwrap();
             assert_eq!(

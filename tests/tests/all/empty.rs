@@ -4,8 +4,7 @@
 //! full one, the collision system with empty objects, refits and validation.
 
 use bvhkit::builders::{
-    refit_all, BottomUp, DynNode, DynamicConfig, DynamicTree, Insertion, MergeMetric, Method,
-    Refit, PRESETS,
+    refit_all, BottomUp, DynNode, DynamicConfig, DynamicTree, Insertion, Method, Refit, PRESETS,
 };
 use bvhkit::collision::{collide, object_pairs, world_bounds, BroadPhase, Object};
 use bvhkit::glam::Vec3;
@@ -188,7 +187,7 @@ fn every_builder_builds_the_empty_tree() {
     for method in [Method::Exhaustive, Method::Ploc { radius: 16 }] {
         let cfg = BottomUp {
             method,
-            metric: MergeMetric::SurfaceArea,
+            ..BottomUp::default()
         };
         let (nodes, idx, depth) = build_bottom_up::<Aabb, Triangle>(&cfg, &NONE).unwrap();
         assert_eq!((nodes.len(), idx.len(), depth), (0, 0, 0), "{method:?}");

@@ -410,8 +410,8 @@ proptest! {
         b in scene(40),
         probe in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
     ) {
-        use bvhkit::builders::{BottomUp, MergeMetric, Method};
-        let cfg = BottomUp { method: Method::Ploc { radius: 2 }, metric: MergeMetric::SurfaceArea };
+        use bvhkit::builders::{BottomUp, Method};
+        let cfg = BottomUp { method: Method::Ploc { radius: 2 }, ..BottomUp::default() };
         let (na, ia, _) = build_bottom_up::<Aabb, _>(&cfg, &a).map_err(|e| TestCaseError::fail(format!("{e}")))?;
         let (nb, ib, _) = build_bottom_up::<Aabb, _>(&cfg, &b).map_err(|e| TestCaseError::fail(format!("{e}")))?;
         run_all((&na, &ia), (&nb, &ib), &a, &b, probe)?;
