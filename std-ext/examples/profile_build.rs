@@ -87,7 +87,9 @@ fn ploc(radius: u32) {
             .build(&tris, &mut nodes, &mut idx, &mut scratch)
             .unwrap();
         times.push(t.elapsed().as_secs_f64() * 1e3);
-        stats = Some((bvh.node_count(), bvh.stats().sah_cost));
+        if stats.is_none() {
+            stats = Some((bvh.node_count(), bvh.stats().sah_cost));
+        }
     }
     times.sort_by(f64::total_cmp);
     let (count, sah) = stats.unwrap();

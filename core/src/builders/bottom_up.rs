@@ -72,7 +72,8 @@ pub struct BottomUpScratch<'s, B> {
     pub clusters: &'s mut [Cluster<B>],
     /// At least `2n` words (active list and neighbour table).
     pub work: &'s mut [u32],
-    /// At least `n` keys (Morton codes; unused by the exhaustive method).
+    /// At least `2n` keys (Morton codes and their sort's second buffer;
+    /// unused by the exhaustive method).
     pub keys: &'s mut [u64],
 }
 
@@ -131,9 +132,9 @@ impl BottomUp {
     }
 
     /// Scratch lengths for `n` primitives: `(clusters, work, keys)` =
-    /// `(2n - 1, 2n, n)`. In bytes: `(2n - 1) * (size_of::<B>() + 8) + 8n + 8n`.
+    /// `(2n - 1, 2n, 2n)`. In bytes: `(2n - 1) * (size_of::<B>() + 8) + 8n + 16n`.
     pub const fn scratch_len(n: usize) -> (usize, usize, usize) {
-        (crate::max_nodes(n), 2 * n, n)
+        (crate::max_nodes(n), 2 * n, 2 * n)
     }
 
     /// Builds a tree into `nodes` (at least [`max_nodes(n)`](crate::max_nodes))
@@ -183,25 +184,25 @@ impl BottomUp {
             }
         }
         let clusters = &mut *scratch.clusters;
-        for (i, p) in prims.iter().enumerate() {
-            clusters[i] = Cluster {
-                bv: B::from_aabb(&p.bounds()),
-                left: i as u32,
-                right: i as u32,
-            };
-        }
         let (active, rest) = scratch.work.split_at_mut(n);
-        for (i, a) in active.iter_mut().enumerate() {
-            *a = i as u32;
-        }
         let root = match self.method {
-            Method::Exhaustive => exhaustive(clusters, active, n, self.metric, scene_scale(prims)),
+            Method::Exhaustive => {
+                for (i, p) in prims.iter().enumerate() {
+                    clusters[i] = Cluster {
+                        bv: B::from_aabb(&p.bounds()),
+                        left: i as u32,
+                        right: i as u32,
+                    };
+                    active[i] = i as u32;
+                }
+                exhaustive(clusters, active, n, self.metric, scene_scale(prims))
+            }
             Method::Ploc { radius } => ploc(
                 prims,
                 clusters,
                 active,
                 &mut rest[..n],
-                &mut scratch.keys[..n],
+                &mut scratch.keys[..2 * n],
                 radius as usize,
                 self.metric,
             ),
@@ -253,7 +254,11 @@ fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, scale: f32) -> f32 {
 /// length, so the largest merges cost about 1 whether the scene is 1e-12 or
 /// 1e30 wide.
 fn scene_scale<P: Primitive>(prims: &[P]) -> f32 {
-    let scene = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds()));
+    unit_scale(&prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds())))
+}
+
+/// 1 / the size of `scene` (1 for a point or an overflow).
+fn unit_scale(scene: &Aabb) -> f32 {
     let scale = 1.0 / scene.extent().max_element();
     if scale > 0.0 && scale.is_finite() {
         scale
@@ -410,13 +415,22 @@ fn ploc<B: BoundingVolume, P: Primitive>(
     metric: MergeMetric,
 ) -> u32 {
     let n = prims.len();
-    let scale = scene_scale(prims);
-    // Morton order of the primitive centres (ties broken by index).
-    let mut centres = Aabb::EMPTY;
+    // One pass for the scene's size (the unit of the merge costs) and the
+    // box of the centres (the Morton grid).
+    let (mut scene, mut centres) = (Aabb::EMPTY, Aabb::EMPTY);
     for p in prims {
-        centres.grow(p.bounds().center());
+        let b = p.bounds();
+        scene = scene.union(&b);
+        centres.grow(b.center());
     }
+    let scale = unit_scale(&scene);
+    // Morton order of the primitive centres, ties by index: each key holds
+    // its 30-bit code above the primitive's index, and a stable radix sort
+    // on the code's bytes (a pass whose digit is the same for every key is
+    // skipped) ping-pongs between the two halves of `keys`, reading them
+    // in order rather than through an index list.
     let extent = centres.extent();
+    let (keys, spare) = keys.split_at_mut(n);
     for (i, p) in prims.iter().enumerate() {
         let c = p.bounds().center();
         let mut q = [0u32; 3];
@@ -428,26 +442,19 @@ fn ploc<B: BoundingVolume, P: Primitive>(
             };
             q[k] = (t.clamp(0.0, 1.0) * 1023.0) as u32;
         }
-        keys[i] = morton3(q[0], q[1], q[2]) as u64;
+        keys[i] = (u64::from(morton3(q[0], q[1], q[2])) << 32) | i as u64;
     }
-    // Curve order, ties by index: a stable radix sort of the indices (which
-    // start in index order) by their 30-bit codes, 8 bits a pass, ping-pong
-    // between `active` and `nearest`; a pass whose digit is the same for
-    // every code moves nothing and is skipped.
-    for (i, a) in active.iter_mut().enumerate() {
-        *a = i as u32;
-    }
-    let mut sorted_in_active = true;
-    for shift in [0u32, 8, 16, 24] {
-        let (from, to) = if sorted_in_active {
-            (&mut *active, &mut *nearest)
+    let mut sorted_in_keys = true;
+    for shift in [32u32, 40, 48, 56] {
+        let (from, to) = if sorted_in_keys {
+            (&mut *keys, &mut *spare)
         } else {
-            (&mut *nearest, &mut *active)
+            (&mut *spare, &mut *keys)
         };
-        let digit = |i: u32| ((keys[i as usize] >> shift) & 0xFF) as usize;
+        let digit = |key: u64| ((key >> shift) & 0xFF) as usize;
         let mut start = [0u32; 256];
-        for &i in from.iter() {
-            start[digit(i)] += 1;
+        for &key in from.iter() {
+            start[digit(key)] += 1;
         }
         if start.iter().any(|&c| c as usize == n) {
             continue;
@@ -456,19 +463,28 @@ fn ploc<B: BoundingVolume, P: Primitive>(
         for c in start.iter_mut() {
             (*c, sum) = (sum, sum + *c);
         }
-        for &i in from.iter() {
-            let d = digit(i);
-            to[start[d] as usize] = i;
+        for &key in from.iter() {
+            let d = digit(key);
+            to[start[d] as usize] = key;
             start[d] += 1;
         }
-        sorted_in_active = !sorted_in_active;
+        sorted_in_keys = !sorted_in_keys;
     }
-    if !sorted_in_active {
-        active.copy_from_slice(nearest);
+    let sorted = if sorted_in_keys { &*keys } else { &*spare };
+    // The leaf clusters in curve order: cluster `k` holds the `k`-th
+    // primitive along the curve, so the first round reads its clusters in
+    // order, and merged clusters (appended as they form) stay close to it.
+    for (k, &key) in sorted.iter().enumerate() {
+        let prim = key as u32;
+        clusters[k] = Cluster {
+            bv: B::from_aabb(&prims[prim as usize].bounds()),
+            left: prim,
+            right: prim,
+        };
+        active[k] = k as u32;
     }
     let mut k = n;
     let mut next = n as u32;
-    const GONE: u32 = u32::MAX;
     // Each pair's cost is computed once: row `i` of `ring` holds the costs
     // of `i` with `i + 1 ..= i + radius`, kept until the last of those has
     // read it. Wider windows than the ring recompute both directions.
@@ -500,24 +516,31 @@ fn ploc<B: BoundingVolume, P: Primitive>(
             }
             nearest[i] = partner as u32;
         }
-        // Mutual best pairs merge into the slot of the lower index.
-        let mut merged = 0;
+        // Mutual best pairs merge into the slot of the lower index, and the
+        // list closes up behind them in the same pass (curve order kept:
+        // a slot is written only after it and every slot after it that
+        // this round reads, `j > i`, have been read).
+        let mut w = 0;
         for i in 0..k {
             let j = nearest[i] as usize;
-            if j > i && nearest[j] as usize == i {
+            if j != i && nearest[j] as usize == i {
+                if j < i {
+                    continue; // merged at `j`
+                }
                 let (l, r) = (active[i], active[j]);
                 clusters[next as usize] = Cluster {
                     bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
                     left: l,
                     right: r,
                 };
-                active[i] = next;
-                active[j] = GONE;
+                active[w] = next;
                 next += 1;
-                merged += 1;
+            } else {
+                active[w] = active[i];
             }
+            w += 1;
         }
-        if merged == 0 {
+        if w == k {
             // Cannot happen with a strict order of pair costs, but never loop
             // forever: merge the first two clusters.
             let (l, r) = (active[0], active[1]);
@@ -527,16 +550,9 @@ fn ploc<B: BoundingVolume, P: Primitive>(
                 right: r,
             };
             active[0] = next;
-            active[1] = GONE;
             next += 1;
-        }
-        // Compact, keeping the curve order.
-        let mut w = 0;
-        for i in 0..k {
-            if active[i] != GONE {
-                active[w] = active[i];
-                w += 1;
-            }
+            active.copy_within(2..k, 1);
+            w = k - 1;
         }
         k = w;
     }
