@@ -179,7 +179,10 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     ) -> Result<Self, Error> {
         use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster};
         let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
-        let mut clusters = vec![Cluster::<B>::EMPTY; nc];
+        // Zero bits: the builder writes every cluster it reads, and zeroed
+        // pages cost nothing until then (a fill of `EMPTY` wrote 64 bytes
+        // per primitive first).
+        let mut clusters = vec![Cluster::<B>::ZERO; nc];
         let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
         let mut scratch = BottomUpScratch {
             clusters: &mut clusters,

@@ -8,7 +8,7 @@
 //! rays test the triangles through the same indices.
 
 use crate::common::{sah, time, Measured, PairSum, RayHit, Runs, Scene, Timing};
-use bvhkit::builders::{BottomUp, Method};
+use bvhkit::builders::{BottomUp, Collapse, Method};
 use bvhkit::layout::{QuantNode, QuantizedWide, Wide, WideNode};
 use bvhkit::{Aabb, Bvh, Hierarchy, Pairs, Query, RayOrder, TopDown};
 use bvhkit_std::OwnedBvh;
@@ -51,15 +51,21 @@ pub fn run(scene: &Scene, runs: Runs) -> Vec<Measured> {
     let (pa, pb) = (a.plain_view(), b.plain_view());
     layout!("sah/quantized4", QuantizedWide, QuantNode::EMPTY, pa, pb);
 
-    // PLOC (one primitive per leaf): the default search radius, and radius 1
-    // (the radius of obvhs's fastest preset).
+    // PLOC with the default leaf collapse: the default search radius, and
+    // radius 1 (the radius of obvhs's fastest preset); and radius 1 with one
+    // primitive per leaf, as obvhs's fastest preset leaves its tree.
+    let r1 = BottomUp {
+        method: Method::Ploc { radius: 1 },
+        ..BottomUp::default()
+    };
     for (name, builder) in [
         ("ploc", BottomUp::default()),
+        ("ploc-r1", r1),
         (
-            "ploc-r1",
+            "ploc-r1-1leaf",
             BottomUp {
-                method: Method::Ploc { radius: 1 },
-                ..BottomUp::default()
+                collapse: Collapse::None,
+                ..r1
             },
         ),
     ] {
@@ -126,9 +132,14 @@ fn measure<H: Hierarchy<Bv = Aabb>>(
             "the sah tree collapsed to 4-wide nodes, sharing its kept leaf bounds \
              (build includes the collapse)"
         } else if builder == "ploc" {
-            "BottomUp::default() (PLOC, radius 16), OwnedBvh::build_bottom_up"
+            "BottomUp::default() (PLOC, radius 16, leaves collapsed by SAH to <= 4), \
+             OwnedBvh::build_bottom_up"
         } else if builder == "ploc-r1" {
-            "BottomUp with Method::Ploc { radius: 1 }, OwnedBvh::build_bottom_up"
+            "BottomUp with Method::Ploc { radius: 1 } (leaves collapsed by SAH to <= 4), \
+             OwnedBvh::build_bottom_up"
+        } else if builder == "ploc-r1-1leaf" {
+            "BottomUp with Method::Ploc { radius: 1 } and Collapse::None (one primitive \
+             per leaf, as obvhs fastest_build), OwnedBvh::build_bottom_up"
         } else {
             "TopDown::default() (binned SAH, 16 bins, <= 4 per leaf), OwnedBvh::build \
              (primitive bounds kept in leaf order)"

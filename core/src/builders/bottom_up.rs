@@ -62,6 +62,15 @@ impl<B: BoundingVolume> Cluster<B> {
         left: 0,
         right: 0,
     };
+
+    /// A cluster of zero bits, for initialising scratch that the builder
+    /// overwrites anyway: a `static` array of it goes to `.bss`, and a
+    /// vector of it can come from zeroed pages instead of being filled.
+    pub const ZERO: Self = Cluster {
+        bv: B::ZERO,
+        left: 0,
+        right: 0,
+    };
 }
 
 /// Caller-provided scratch for a bottom-up build over `n` primitives; sizes
