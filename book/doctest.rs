@@ -494,8 +494,9 @@ mod tests {
         assert_eq!(exact_rows, 4, "the rocks and the dragon have exact rows");
         // Builders, on every scene: binned SAH on the front; the sweep within
         // 2% of its SAH for over 5x its build time; min-overlap and
-        // max-separation dominated; PLOC's trees worse and slower to query,
-        // and PLOC dominated on the three scans.
+        // max-separation dominated; PLOC's trees worse, and PLOC dominated
+        // on the three scans (slower to build and to query), on the front on
+        // the rocks (faster to build).
         for scene in [
             "rocks",
             "armadillo.off",
@@ -524,11 +525,17 @@ mod tests {
                 assert_eq!(row(&b, "builder", "ploc-r4")["pareto"], false, "{scene}");
             }
             let ploc = row(&b, "builder", "ploc-r4");
-            assert!(num(ploc, "query_ms") > num(sah, "query_ms"), "{scene}");
+            if scene == "rocks" {
+                assert_eq!(ploc["pareto"], true);
+                assert!(num(ploc, "build_ms") < num(sah, "build_ms"));
+            } else {
+                assert!(num(ploc, "query_ms") > num(sah, "query_ms"), "{scene}");
+                assert!(num(ploc, "build_ms") > num(sah, "build_ms"), "{scene}");
+            }
             assert!(num(ploc, "sah_cost") > num(sah, "sah_cost"), "{scene}");
-            // bottom-up.md: "a SAH cost up to about a tenth above it".
+            // performance.md: "a SAH cost up to 12% above binned SAH's".
             assert!(
-                num(ploc, "sah_cost") < 1.11 * num(sah, "sah_cost"),
+                num(ploc, "sah_cost") < 1.12 * num(sah, "sah_cost"),
                 "{scene}"
             );
         }
@@ -871,19 +878,32 @@ mod tests {
             .take_while(|l| !l.starts_with("#### Best"))
             .filter(|l| l.starts_with("| ") && !l.starts_with("| mesh"))
             .map(|l| {
-                l.split('|')
-                    .skip(3)
-                    .filter_map(|c| c.trim().strip_suffix('x')?.parse().ok())
+                let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+                // The triangle count, then the ratios.
+                let tris: f64 = cells[2].parse().unwrap();
+                core::iter::once(tris)
+                    .chain(
+                        cells[3..]
+                            .iter()
+                            .filter_map(|c| c.strip_suffix('x')?.parse().ok()),
+                    )
                     .collect()
             })
             .collect();
         assert!(targets.len() >= 5);
         for r in &targets {
-            let [build, sah, fastest, _, pairs, rays, _, bytes] = r[..] else {
+            let [tris, build, sah, fastest, _, pairs, rays, _, bytes] = r[..] else {
                 panic!("targets row {r:?}")
             };
+            // "faster than parry3d's binned builder on the meshes of 20,000
+            // triangles and more" (below that, within the noise).
+            let build_ok = if tris >= 19_000.0 {
+                build < 1.0
+            } else {
+                build < 1.25
+            };
             assert!(
-                sah < 1.0 && build < 1.0 && build > 0.33 && fastest > 1.0,
+                sah < 1.0 && build_ok && build > 0.33 && fastest > 1.0,
                 "{r:?}"
             );
             assert!(
@@ -893,6 +913,7 @@ mod tests {
         }
         let chapter = include_str!("src/performance.md");
         assert!(chapter.contains("not yet three\n  times faster"));
+        assert!(chapter.contains("on the meshes of 20,000 triangles and more"));
     }
 
     /// The top-down chapter's scaling table is a recorded run of the
@@ -929,6 +950,94 @@ mod tests {
         for r in &rows {
             let ms: f64 = r[3].parse().expect("median ms");
             assert!(ms > 0.0 && r[5].ends_with('x'), "{r:?}");
+        }
+    }
+
+    /// The bottom-up chapter's leaf-collapse table is a recorded run of the
+    /// `collapse_sweep` example (which checks every tree's pairs and rays
+    /// against the top-down tree's before printing its row): stamped, three
+    /// meshes with every row, and the chapter's readings computed from it.
+    #[test]
+    fn recorded_collapse_sweep_and_its_readings() {
+        let chapter = include_str!("src/bottom-up.md");
+        assert!(chapter.contains("{{#include measured/collapse.md}}"));
+        let run = include_str!("src/measured/collapse.md");
+        assert!(
+            run.starts_with("Recorded ") && run.contains(" UTC · "),
+            "{run}"
+        );
+        let rows: Vec<Vec<&str>> = run
+            .lines()
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| mesh"))
+            .map(|l| {
+                l.split('|')
+                    .map(str::trim)
+                    .filter(|c| !c.is_empty())
+                    .collect()
+            })
+            .collect();
+        let meshes = ["armadillo", "ChineseDragon-10kv", "bunny00"];
+        assert_eq!(rows.len(), 13 * meshes.len());
+        let get = |mesh: &str, tree: &str, collapse: &str, col: usize| -> f64 {
+            rows.iter()
+                .find(|r| r[0] == mesh && r[1] == tree && r[2] == collapse)
+                .unwrap_or_else(|| panic!("no row {mesh} {tree} {collapse}"))[col]
+                .parse()
+                .unwrap()
+        };
+        let (nodes, sah, pairs, rays) = (4, 5, 6, 7);
+        let default = "4, ct 3 (default)";
+        let range = |v: Vec<f64>| {
+            let lo = v.iter().cloned().fold(f64::INFINITY, f64::min);
+            let hi = v.iter().cloned().fold(0.0, f64::max);
+            format!("{lo:.2} to {hi:.2}")
+        };
+        let (mut pair_ratio, mut node_ratio, mut ray_ratio, mut off_best) =
+            (Vec::new(), Vec::new(), Vec::new(), 0.0f64);
+        let (mut against_top_down, mut r1_build) = (Vec::new(), Vec::new());
+        for mesh in meshes {
+            for tree in ["PLOC r1", "PLOC r16", "insertion"] {
+                let ratio = |col| get(mesh, tree, default, col) / get(mesh, tree, "none", col);
+                pair_ratio.push(ratio(pairs));
+                node_ratio.push(ratio(nodes));
+                ray_ratio.push(ratio(rays));
+            }
+            for tree in ["PLOC r1", "PLOC r16"] {
+                // Node price 1 minimises the SAH cost: below one per leaf's.
+                assert!(get(mesh, tree, "4, ct 1", sah) < get(mesh, tree, "none", sah));
+                let best = ["4, ct 1", "4, ct 2", default]
+                    .iter()
+                    .map(|c| get(mesh, tree, c, pairs))
+                    .fold(f64::INFINITY, f64::min);
+                off_best = off_best.max(get(mesh, tree, default, pairs) / best - 1.0);
+            }
+            // Against the top-down tree: PLOC r16's pairs, its build (not
+            // faster), PLOC r1's build.
+            let (build, td) = (3, "top-down default");
+            let top_down = |col| get(mesh, td, "(4 per leaf)", col);
+            against_top_down.push(get(mesh, "PLOC r16", default, pairs) / top_down(pairs));
+            assert!(
+                get(mesh, "PLOC r16", default, build) > top_down(build),
+                "{mesh}"
+            );
+            r1_build.push(get(mesh, "PLOC r1", default, build) / top_down(build));
+        }
+        for claim in [
+            format!("pair query in {} of the time", range(pair_ratio)),
+            format!("with {} of the nodes", range(node_ratio)),
+            format!("rays in {} of the time", range(ray_ratio)),
+            format!("within {:.0}% of the fastest", (off_best * 100.0).ceil()),
+            format!(
+                "pairs in {} of the top-down tree's time",
+                range(against_top_down)
+            ),
+            format!("builds in {} of its time", {
+                let lo = r1_build.iter().cloned().fold(f64::INFINITY, f64::min);
+                let hi = r1_build.iter().cloned().fold(0.0, f64::max);
+                format!("{lo:.1} to {hi:.1}")
+            }),
+        ] {
+            assert!(chapter.contains(&claim), "bottom-up.md should say: {claim}");
         }
     }
 }

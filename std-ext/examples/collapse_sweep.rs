@@ -34,8 +34,8 @@ fn main() {
     let collapses = [
         ("none", Collapse::None),
         ("4, ct 1", sah(4, 1.0)),
-        ("4, ct 2 (default)", Collapse::DEFAULT),
-        ("4, ct 3", sah(4, 3.0)),
+        ("4, ct 2", sah(4, 2.0)),
+        ("4, ct 3 (default)", Collapse::DEFAULT),
         ("8, ct 3", sah(8, 3.0)),
     ];
     println!(
@@ -83,7 +83,7 @@ fn main() {
                 scene.measure(label, what, &build, Some(&reference));
             }
         }
-        for (what, collapse) in [collapses[0], collapses[2]] {
+        for (what, collapse) in [collapses[0], collapses[3]] {
             let builder = Insertion {
                 collapse,
                 ..Insertion::default()

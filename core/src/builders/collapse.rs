@@ -57,7 +57,7 @@ pub enum Collapse {
     None,
     /// Make a subtree of at most `max_leaf_size` primitives one leaf where
     /// that lowers the SAH cost with a node visit weighing `traversal_cost`
-    /// primitive tests. The default is 4 and 2: leaves of the top-down
+    /// primitive tests. The default is 4 and 3: leaves of the top-down
     /// builders' size, and the weight whose pair queries were fastest
     /// (`collapse_sweep` example, recorded in the book's bottom-up chapter).
     Sah {
@@ -80,7 +80,7 @@ impl Collapse {
     /// [`Collapse::default`], for `const` contexts.
     pub const DEFAULT: Self = Collapse::Sah {
         max_leaf_size: 4,
-        traversal_cost: 2.0,
+        traversal_cost: 3.0,
     };
 
     /// The largest leaf this allows.
