@@ -1,5 +1,5 @@
 //! SAH cost of insertion builds per search, rotation setting and order.
-use bvhkit::builders::{DynamicConfig, InsertOrder, Insertion, Rotations, SiblingSearch};
+use bvhkit::builders::{Collapse, DynamicConfig, InsertOrder, Insertion, Rotations, SiblingSearch};
 use bvhkit::Aabb;
 use bvhkit_std::{scene, OwnedBvh};
 fn main() {
@@ -22,7 +22,8 @@ fn main() {
                         margin: 0.0,
                     },
                     order,
-                    ..Insertion::default()
+                    // The trees as insertion makes them, one per leaf.
+                    collapse: Collapse::None,
                 };
                 let t = std::time::Instant::now();
                 match OwnedBvh::<Aabb>::build_by_insertion(&b, &rock) {
