@@ -200,7 +200,11 @@ fn print_error(e: bvhkit::Error) {
     #[cfg(all(feature = "print-display", not(feature = "print-debug")))]
     hprintln!("error {}", e);
     #[cfg(feature = "print-float")]
-    hprintln!("error {} near {}", e.as_str(), core::hint::black_box(1.5f32));
+    hprintln!(
+        "error {} near {}",
+        e.as_str(),
+        core::hint::black_box(1.5f32)
+    );
     #[cfg(not(any(
         feature = "print-debug",
         feature = "print-display",
