@@ -12,6 +12,7 @@
 //! |---|---|---|
 //! | triangle–triangle | Guigue–Devillers; coplanar pairs in 2-D; zero-area triangles as segments or points | yes |
 //! | box–box | interval comparisons | yes |
+//! | box–triangle | 13 separating axes, each decided by exact orientation signs | yes |
 //! | sphere–sphere | squared distance in `f64` | to `f64` rounding |
 
 use crate::bv::Aabb;
@@ -66,6 +67,107 @@ impl<P: Intersects<Q>, Q> Intersects<Q> for &P {
     fn intersects(&self, other: &Q) -> bool {
         (**self).intersects(other)
     }
+}
+
+/// A box and a triangle: exact ([`box_triangle_intersect`]).
+impl Intersects<Triangle> for Aabb {
+    #[inline]
+    fn intersects(&self, other: &Triangle) -> bool {
+        box_triangle_intersect(self, other)
+    }
+}
+
+/// A triangle and a box: exact ([`box_triangle_intersect`]).
+impl Intersects<Aabb> for Triangle {
+    #[inline]
+    fn intersects(&self, other: &Aabb) -> bool {
+        box_triangle_intersect(other, self)
+    }
+}
+
+/// Exact box–triangle intersection (closed sets, touching counts) by
+/// separating axes: the two convex sets are disjoint exactly when their
+/// projections onto one of 13 axes are, namely the box's three face
+/// normals, the triangle's normal, and the nine cross products of a
+/// triangle edge with a box axis. Each axis test is decided by exact signs,
+/// never by a rounded projection:
+///
+/// - a box axis: the triangle's extent on that coordinate against the box's
+///   (plain comparisons);
+/// - the triangle's normal: the box's eight corners all strictly on one side
+///   of the triangle's plane ([`orient3`]);
+/// - edge `e` × axis `k`: projected along `k`, the box is a rectangle and the
+///   triangle a triangle in the plane, and that axis separates them exactly
+///   when the rectangle's four corners lie strictly on the far side of the
+///   projected edge's line from the third vertex ([`orient2`]); if the
+///   projected triangle is flat (the third vertex on that line), strictly on
+///   either side. For two convex polygons in a plane, one disjoint from the
+///   other always lies beyond an edge line of one of them, so with the box
+///   axes this covers the axis's other side too.
+///
+/// Zero-area triangles need no special case: an axis that degenerates to
+/// zero sees every corner at sign 0 and separates nothing, and the
+/// remaining axes are those of a segment (or point) against a box. A NaN
+/// anywhere makes every comparison false, so the box axes report no
+/// separation; queries refuse NaN coordinates before they get here.
+///
+/// ```
+/// use bvhkit::{Aabb, Intersects, Triangle};
+/// use glam::Vec3;
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// // Across the box's (1, 1, 1) corner, in the plane x + y + z = 3.25: its
+/// // bounding box overlaps the unit box, the triangle itself misses it.
+/// let past = Triangle::new(Vec3::new(2.25, 0.5, 0.5), Vec3::new(0.5, 2.25, 0.5), Vec3::new(0.5, 0.5, 2.25));
+/// assert!(unit.overlaps(&bvhkit::Primitive::bounds(&past)));
+/// assert!(!unit.intersects(&past));
+/// // In the plane x + y + z = 3, the corner is the triangle's centroid:
+/// // touching counts.
+/// let touching = Triangle::new(Vec3::new(2.0, 0.5, 0.5), Vec3::new(0.5, 2.0, 0.5), Vec3::new(0.5, 0.5, 2.0));
+/// assert!(unit.intersects(&touching) && touching.intersects(&unit));
+/// ```
+pub fn box_triangle_intersect(b: &Aabb, t: &Triangle) -> bool {
+    let [v0, v1, v2] = t.v;
+    // The box's face normals: the triangle's extent per coordinate.
+    let (lo, hi) = (v0.min(v1).min(v2), v0.max(v1).max(v2));
+    if hi.cmplt(b.min).any() || lo.cmpgt(b.max).any() {
+        return false;
+    }
+    let corner = |k: usize| {
+        Vec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    };
+    // The triangle's normal: every corner strictly on one side of the plane.
+    let first = orient3(v0, v1, v2, corner(0));
+    if first != 0 && (1..8).all(|k| orient3(v0, v1, v2, corner(k)) == first) {
+        return false;
+    }
+    // Edge x box axis, as the projected triangle's edge lines against the
+    // projected box's four corners.
+    for k in 0..3 {
+        let (u, w) = plane_axes(k);
+        let rect = |m: usize| {
+            let mut p = b.min;
+            p[u] = if m & 1 == 0 { b.min[u] } else { b.max[u] };
+            p[w] = if m & 2 == 0 { b.min[w] } else { b.max[w] };
+            p
+        };
+        for (a, c, opposite) in [(v0, v1, v2), (v1, v2, v0), (v2, v0, v1)] {
+            let inner = orient2(a, c, opposite, k);
+            let side = orient2(a, c, rect(0), k);
+            let beyond = if inner == 0 {
+                side != 0
+            } else {
+                side == -inner
+            };
+            if beyond && (1..4).all(|m| orient2(a, c, rect(m), k) == side) {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Sign (-1, 0, 1) of `det[b - a, c - a, d - a]`, computed exactly: positive
@@ -492,6 +594,164 @@ mod tests {
         assert_eq!(
             degenerate(&Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y), ExactSigns),
             None
+        );
+    }
+
+    /// The box–triangle test against its definition, decided exactly
+    /// another way: a closed triangle meets a closed box iff a vertex lies
+    /// in the box or the triangle meets one of the 12 triangles of the box's
+    /// surface ([`triangles_intersect_by_edges`]; a flat box's surface
+    /// triangles cover it). Boxes flat on one or two axes or a point,
+    /// triangles with vertices on corners, edges and faces and one `f32` step
+    /// outside them, through a corner, degenerate, at scales 1e-3 to 1e4.
+    #[test]
+    fn box_triangle_matches_its_definition() {
+        let mut s = 0x51ce_b0a7_d00d_f00du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let reference = |b: &Aabb, t: &Triangle| {
+            let c = |k: usize| {
+                Vec3::new(
+                    if k & 1 == 0 { b.min.x } else { b.max.x },
+                    if k & 2 == 0 { b.min.y } else { b.max.y },
+                    if k & 4 == 0 { b.min.z } else { b.max.z },
+                )
+            };
+            // Two triangles per face: corners differing in one axis bit.
+            let faces = [
+                (0, 1, 3, 2),
+                (4, 5, 7, 6),
+                (0, 1, 5, 4),
+                (2, 3, 7, 6),
+                (0, 2, 6, 4),
+                (1, 3, 7, 5),
+            ];
+            t.v.iter()
+                .any(|p| p.cmpge(b.min).all() && p.cmple(b.max).all())
+                || faces.iter().any(|&(p, q, r, w)| {
+                    triangles_intersect_by_edges(&Triangle::new(c(p), c(q), c(r)), t)
+                        || triangles_intersect_by_edges(&Triangle::new(c(p), c(r), c(w)), t)
+                })
+        };
+        let (mut hits, mut near_misses, mut stepped_in, mut stepped_out) = (0, 0, 0, 0);
+        for round in 0..40_000usize {
+            let scale = [1.0f32, 1e-3, 1e4][round % 3];
+            let offset = Vec3::splat([0.0f32, 1e4][round / 3 % 2] * scale);
+            let min = offset + Vec3::new(next(), next(), next()) * scale;
+            let mut extent = Vec3::new(next().abs(), next().abs(), next().abs()) * scale;
+            match round / 6 % 6 {
+                0 => extent[round % 3] = 0.0,
+                1 => extent = Vec3::ZERO,
+                _ => {}
+            }
+            let b = Aabb::new(min, min + extent);
+            let corner = |k: usize| {
+                Vec3::new(
+                    if k & 1 == 0 { b.min.x } else { b.max.x },
+                    if k & 2 == 0 { b.min.y } else { b.max.y },
+                    if k & 4 == 0 { b.min.z } else { b.max.z },
+                )
+            };
+            let mut point = |kind: usize| -> Vec3 {
+                let r = Vec3::new(next(), next(), next());
+                match kind {
+                    // Near the box.
+                    0 => b.center() + r * (extent.max_element() + scale * 0.05),
+                    // A corner.
+                    1 => corner((next().abs() * 8.0) as usize % 8),
+                    // On a face: one coordinate pinned to the box's.
+                    2 => {
+                        let mut p = b.center() + r * extent * 0.5;
+                        let k = (next().abs() * 3.0) as usize % 3;
+                        p[k] = if next() < 0.0 { b.min[k] } else { b.max[k] };
+                        p
+                    }
+                    // A corner moved one f32 step outwards on one axis.
+                    _ => {
+                        let k = (next().abs() * 8.0) as usize % 8;
+                        let mut p = corner(k);
+                        let a = (next().abs() * 3.0) as usize % 3;
+                        let up = k >> a & 1 == 1;
+                        let bits = p[a].to_bits();
+                        let step = if (p[a] >= 0.0) == up {
+                            bits + 1
+                        } else {
+                            bits.wrapping_sub(1)
+                        };
+                        p[a] = if p[a] == 0.0 {
+                            if up {
+                                1e-45
+                            } else {
+                                -1e-45
+                            }
+                        } else {
+                            f32::from_bits(step)
+                        };
+                        p
+                    }
+                }
+            };
+            let kinds = [round % 4, round / 4 % 4, round / 16 % 4];
+            let mut v = kinds.map(&mut point);
+            match round / 64 % 7 {
+                0 => v[2] = v[0],
+                1 => v[2] = v[0] + (v[1] - v[0]) * 0.5,
+                // Through a corner: two vertices mirrored about it.
+                2 => {
+                    let c = corner(round % 8);
+                    v[1] = c + (c - v[0]);
+                }
+                // Across a corner, square to its diagonal: the plane through
+                // the corner, just past it, or just short of it.
+                3 | 4 => {
+                    let k = round % 8;
+                    let c = corner(k);
+                    let out = Vec3::new(
+                        if k & 1 == 0 { -1.0 } else { 1.0 },
+                        if k & 2 == 0 { -1.0 } else { 1.0 },
+                        if k & 4 == 0 { -1.0 } else { 1.0 },
+                    );
+                    let h = next().abs() * scale + scale * 0.01;
+                    let d = [0.0, h * 1e-6, -h * 1e-6][round / 448 % 3];
+                    let (long, short) = (2.0 * h + d, -h + d);
+                    v = [
+                        c + out * Vec3::new(long, short, short),
+                        c + out * Vec3::new(short, long, short),
+                        c + out * Vec3::new(short, short, long),
+                    ];
+                }
+                _ => {}
+            }
+            let t = Triangle::new(v[0], v[1], v[2]);
+            let want = reference(&b, &t);
+            assert_eq!(
+                box_triangle_intersect(&b, &t),
+                want,
+                "round {round}: {b:?} {t:?}"
+            );
+            assert_eq!(t.intersects(&b), want);
+            let bounds_meet = b.overlaps(&crate::Primitive::bounds(&t));
+            hits += want as usize;
+            near_misses += (!want && bounds_meet) as usize;
+            // Every vertex on the box's surface or one step outside it.
+            let on_edge = kinds.iter().all(|&k| k != 0) && round / 64 % 7 > 4;
+            (stepped_in, stepped_out) = match (on_edge, want) {
+                (true, true) => (stepped_in + 1, stepped_out),
+                (true, false) => (stepped_in, stepped_out + 1),
+                _ => (stepped_in, stepped_out),
+            };
+        }
+        assert!(
+            hits > 10_000 && near_misses > 2_000,
+            "{hits} hits, {near_misses} near misses"
+        );
+        assert!(
+            stepped_in > 1_000 && stepped_out > 40,
+            "{stepped_in} / {stepped_out} at the surface"
         );
     }
 }

@@ -603,6 +603,18 @@ pub trait Exercises {
         max_leaf_size: u32,
         traversal_cost: f64,
     ) -> Vec<(u32, u32)>;
+
+    /// Exercise 41: does the closed box `b` share a point with the closed
+    /// triangle `t`? Exactly, for any `f32` input: the two are disjoint
+    /// exactly when their projections are disjoint on one of 13 axes (the
+    /// box's three, the triangle's normal, and each triangle edge crossed
+    /// with each box axis), and each of those tests can be decided by signs
+    /// alone: coordinate comparisons, `bvhkit::narrow::orient3` (a box
+    /// corner against the triangle's plane) and `bvhkit::narrow::orient2`
+    /// (a box corner against an edge's line, projected along an axis), all
+    /// exact. Touching counts; a zero-area triangle is the segment or point
+    /// it is; a box may be flat.
+    fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -974,6 +974,10 @@ impl Exercises for Reference {
         out.sort_unstable();
         out
     }
+
+    fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool {
+        bvhkit::narrow::box_triangle_intersect(b, t)
+    }
 }
 
 /// Exercise 40: `(best cost, primitives, first entry, cheaper as a leaf)`

@@ -536,4 +536,15 @@ impl Exercises for Student {
         let _ = (tree, max_leaf_size, traversal_cost);
         todo!("exercise 40b")
     }
+
+    fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool {
+        // Hint: first the box's own axes (compare the triangle's smallest
+        // and largest coordinate with the box's); then the plane: are all
+        // eight corners strictly on one side (`orient3`)? Then, for each
+        // axis k and each edge (a, c) with third vertex m: are the four
+        // corners of the box seen along k strictly on the other side of the
+        // line through a and c than m (`orient2(a, c, corner, k)`)?
+        let _ = (b, t);
+        todo!("exercise 41")
+    }
 }

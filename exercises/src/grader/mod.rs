@@ -46,6 +46,7 @@ mod ex37_merged_leaves;
 mod ex38_clip_polygon;
 mod ex39_relocate_pieces;
 mod ex40_leaf_collapse;
+mod ex41_box_triangle;
 #[cfg(test)]
 mod wrong;
 
@@ -74,7 +75,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 40] = [
+pub const EXERCISES: [(u32, &str); 41] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -124,6 +125,10 @@ pub const EXERCISES: [(u32, &str); 40] = [
     (38, "exact k-DOP measures: polygon clipping"),
     (39, "the parallel build: moving pieces into place"),
     (40, "leaf collapse: the cheapest cut of a bottom-up tree"),
+    (
+        41,
+        "box against triangle, exactly: separating axes by signs",
+    ),
 ];
 
 /// A score for one exercise.
@@ -184,6 +189,7 @@ pub fn checks() -> Vec<Check> {
         ex38_clip_polygon::checks(),
         ex39_relocate_pieces::checks(),
         ex40_leaf_collapse::checks(),
+        ex41_box_triangle::checks(),
     ]
     .concat()
 }
@@ -397,7 +403,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 452/452 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 464/464 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

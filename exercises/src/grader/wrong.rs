@@ -44,6 +44,7 @@ use super::ex37_merged_leaves;
 use super::ex38_clip_polygon;
 use super::ex39_relocate_pieces;
 use super::ex40_leaf_collapse;
+use super::ex41_box_triangle;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -101,6 +102,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (38, ex38_clip_polygon::wrong::COUNT),
         (39, ex39_relocate_pieces::wrong::COUNT),
         (40, ex40_leaf_collapse::wrong::COUNT),
+        (41, ex41_box_triangle::wrong::COUNT),
     ]
 }
 
@@ -332,5 +334,8 @@ impl Exercises for Wrong {
         traversal_cost: f64,
     ) -> Vec<(u32, u32)> {
         ex40_leaf_collapse::wrong::collapsed_leaves(self.k(40), tree, max_leaf_size, traversal_cost)
+    }
+    fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool {
+        ex41_box_triangle::wrong::box_triangle(self.k(41), b, t)
     }
 }

@@ -4,14 +4,20 @@
 //!
 //! Small integer grids make coplanar, touching, shared-edge, shared-vertex and
 //! zero-area cases common instead of rare.
+//!
+//! The exact box–triangle test against its definition (a vertex in the box,
+//! or the triangle meeting the box's surface) and a 13-axis separating test
+//! in `f64`, and inside the pair query's exact answer.
 
 use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::narrow::{
-    triangles_intersect, triangles_intersect_by_edges, triangles_intersect_with, ExactSigns,
-    F32Signs, F64Signs, Orientation,
+    box_triangle_intersect, triangles_intersect, triangles_intersect_by_edges,
+    triangles_intersect_with, ExactSigns, F32Signs, F64Signs, Orientation,
 };
-use bvhkit::{Intersects, Triangle};
-use bvhkit_tests::proptest_config;
+use bvhkit::{
+    brute_force, Aabb, Descent, Exact, Intersects, PairTraversal, Pairs, Rigid, TopDown, Triangle,
+};
+use bvhkit_tests::{build, open, proptest_config};
 use proptest::prelude::*;
 
 /// Separating-axis test in f64 for non-degenerate triangles. Candidate axes:
@@ -267,5 +273,154 @@ fn exact_at_every_scale() {
             !base.intersects(&lifted),
             "lifted by one ulp at scale {scale}"
         );
+    }
+}
+
+/// The box's eight corners, bit `a` of `k` choosing min or max on axis `a`.
+fn corners(b: &Aabb) -> [Vec3; 8] {
+    core::array::from_fn(|k| {
+        Vec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    })
+}
+
+/// A closed triangle meets a closed box iff one of its vertices is in the box
+/// or it meets the box's surface (12 triangles; a flat box's cover it).
+fn box_triangle_by_surface(b: &Aabb, t: &Triangle) -> bool {
+    let c = corners(b);
+    let faces = [
+        (0, 1, 3, 2),
+        (4, 5, 7, 6),
+        (0, 1, 5, 4),
+        (2, 3, 7, 6),
+        (0, 2, 6, 4),
+        (1, 3, 7, 5),
+    ];
+    t.v.iter()
+        .any(|p| p.cmpge(b.min).all() && p.cmple(b.max).all())
+        || faces.iter().any(|&(p, q, r, w)| {
+            triangles_intersect_by_edges(&Triangle::new(c[p], c[q], c[r]), t)
+                || triangles_intersect_by_edges(&Triangle::new(c[p], c[r], c[w]), t)
+        })
+}
+
+/// Box–triangle separating axes in `f64`: the three coordinate axes, the
+/// normal and each edge crossed with each coordinate axis (zero axes
+/// skipped). Exact while every product fits 53 bits.
+fn box_sat_f64(b: &Aabb, t: &Triangle) -> bool {
+    let p: Vec<DVec3> = t.v.iter().map(|v| v.as_dvec3()).collect();
+    let c: Vec<DVec3> = corners(b).iter().map(|v| v.as_dvec3()).collect();
+    let e = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
+    let mut axes = vec![DVec3::X, DVec3::Y, DVec3::Z, e[0].cross(e[1])];
+    for edge in e {
+        for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
+            axes.push(edge.cross(axis));
+        }
+    }
+    let range = |pts: &[DVec3], ax: DVec3| {
+        pts.iter()
+            .map(|x| x.dot(ax))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
+                (lo.min(d), hi.max(d))
+            })
+    };
+    !axes.into_iter().filter(|a| *a != DVec3::ZERO).any(|ax| {
+        let ((lo1, hi1), (lo2, hi2)) = (range(&p, ax), range(&c, ax));
+        hi1 < lo2 || hi2 < lo1
+    })
+}
+
+/// A box with corners on the integer grid, flat on an axis where the two
+/// draws coincide.
+fn grid_box(r: i32) -> impl Strategy<Value = Aabb> {
+    (grid_point(r), grid_point(r)).prop_map(|(a, b)| Aabb::new(a.min(b), a.max(b)))
+}
+
+proptest! {
+    #![proptest_config(proptest_config(3000))]
+
+    #[test]
+    fn box_triangle_agrees_with_its_definition(b in grid_box(2), t in grid_triangle(3)) {
+        let want = box_triangle_by_surface(&b, &t);
+        prop_assert_eq!(box_triangle_intersect(&b, &t), want, "{:?} {:?}", b, t);
+        prop_assert_eq!(b.intersects(&t), want);
+        prop_assert_eq!(t.intersects(&b), want);
+    }
+
+    #[test]
+    fn box_triangle_agrees_with_f64_separating_axes(b in grid_box(4), t in grid_triangle(4)) {
+        prop_assert_eq!(box_triangle_intersect(&b, &t), box_sat_f64(&b, &t), "{:?} {:?}", b, t);
+    }
+}
+
+/// A tree of boxes against a mesh tree with the exact answer: the pairs are
+/// the boxes and triangles that really touch, for every traversal and with
+/// the mesh moved, the same as testing every pair; and fewer than the
+/// candidates whose bounds overlap.
+#[test]
+fn box_tree_against_a_mesh_reports_exact_pairs() {
+    let mesh = bvhkit_std::scene::rock(2, 7);
+    let bounds = mesh
+        .iter()
+        .fold(Aabb::EMPTY, |u, t| u.union(&bvhkit::Primitive::bounds(t)));
+    let size = bounds.max - bounds.min;
+    // Boxes scattered over the rock's box, a tenth of its size each.
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let boxes: Vec<Aabb> = (0..300)
+        .map(|_| {
+            let lo = bounds.min + size * Vec3::new(next(), next(), next());
+            Aabb::new(lo, lo + size * 0.1 * Vec3::new(next(), next(), next()))
+        })
+        .collect();
+    let cfg = TopDown::default();
+    let (na, ia, _) = build::<Aabb, _>(&cfg, &boxes).unwrap();
+    let (nb, ib, _) = build::<Aabb, _>(&cfg, &mesh).unwrap();
+    let (ta, tb) = (open(&na, &ia, &boxes), open(&nb, &ib, &mesh));
+    let turn = Rigid::new(
+        bvhkit::glam::Quat::from_rotation_z(0.3),
+        size * Vec3::new(0.05, -0.02, 0.0),
+    )
+    .unwrap();
+    let sorted = |mut v: Vec<(u32, u32)>| {
+        v.sort_unstable();
+        v
+    };
+    let mut same = Vec::new();
+    brute_force::pairs_placed(&boxes, &mesh, &bvhkit::Same, Exact, |i, j| {
+        same.push((i, j))
+    });
+    let mut moved = Vec::new();
+    brute_force::pairs_placed(&boxes, &mesh, &turn, Exact, |i, j| moved.push((i, j)));
+    let candidates = brute_force::pairs(&boxes, &mesh, |_, _| {});
+    assert!(
+        !same.is_empty() && same.len() < candidates,
+        "{} of {candidates}",
+        same.len()
+    );
+    let (same, moved) = (sorted(same), sorted(moved));
+    for rule in Descent::ALL {
+        for traversal in PairTraversal::all(rule) {
+            let run = |frame: Option<Rigid>| {
+                let mut got = Vec::new();
+                let pairs = Pairs::new(&ta, &boxes, &tb, &mesh).traversal(traversal);
+                match frame {
+                    None => pairs.exact().for_each(|i, j| got.push((i, j))),
+                    Some(m) => pairs.in_frame(m).exact().for_each(|i, j| got.push((i, j))),
+                }
+                .unwrap();
+                sorted(got)
+            };
+            assert_eq!(run(None), same, "{traversal:?}");
+            assert_eq!(run(Some(turn)), moved, "{traversal:?} moved");
+        }
     }
 }
