@@ -22,6 +22,11 @@ macro_rules! chapters {
     };
 }
 
+/// The README's Rust blocks (its embedded snippet) run as doctests too.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub mod readme {}
+
 chapters! {
     introduction => "introduction.md",
     bounding_volumes => "bounding-volumes.md",

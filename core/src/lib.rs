@@ -80,6 +80,6 @@ pub use query::{
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};
-pub use tree::{max_nodes, Boxes4, Bvh, Content, Hierarchy, Kids, Node, MAX_DEPTH};
+pub use tree::{max_nodes, Boxes4, Bvh, Content, Hierarchy, Kids, Node, Shape, MAX_DEPTH};
 
 pub use glam;

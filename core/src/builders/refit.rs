@@ -20,7 +20,7 @@ use super::enclose;
 use crate::bv::{Aabb, BoundingVolume, BoxSet};
 use crate::primitive::Primitive;
 use crate::query::Tally;
-use crate::tree::Node;
+use crate::tree::{Bvh, Node, Shape};
 use crate::Error;
 use glam::Vec3;
 
@@ -128,6 +128,66 @@ pub fn refit_all<B: BoundingVolume, P: Primitive>(
     }
     tally.updates(nodes.len() as u32);
     Ok(nodes.len())
+}
+
+impl<'a, B: BoundingVolume> Bvh<'a, B> {
+    /// Refits the tree a builder wrote into `nodes` and `indices` to the
+    /// moved `prims` ([`refit_all`], leaves grown by `margin`) and opens it
+    /// again. `shape` is the built tree's [`Bvh::shape`]; the arrays may be
+    /// the whole buffers the builder was given (a `static` sized by
+    /// [`max_nodes`](crate::max_nodes)): only the part the shape names is
+    /// touched. Refitting keeps the tree's topology, so its depth and leaves
+    /// stay valid and the tree is not checked again. The reopened tree keeps
+    /// no leaf bounds (the primitives moved).
+    ///
+    /// Errors, found before anything is written: arrays shorter than
+    /// `shape`, a layout no builder of this crate writes (children before
+    /// their parent, leaves past the index array), an index past `prims`, a
+    /// non-finite moved primitive, a bad margin. An empty tree's shape
+    /// reopens the empty tree.
+    ///
+    /// ```
+    /// use bvhkit::{max_nodes, Aabb, Bvh, Node, Query, TopDown};
+    /// use glam::Vec3;
+    /// let mut boxes: Vec<Aabb> = (0..16)
+    ///     .map(|i| Aabb::new(Vec3::X * i as f32, Vec3::X * i as f32 + Vec3::ONE))
+    ///     .collect();
+    /// // Storage sized for the worst case, as a firmware's statics are.
+    /// let mut nodes = [Node::<Aabb>::ZERO; max_nodes(16)];
+    /// let mut indices = [0u32; 16];
+    /// let shape = TopDown::default().build(&boxes, &mut nodes, &mut indices)?.shape();
+    /// for b in &mut boxes {
+    ///     *b = Aabb::new(b.min + Vec3::Y * 10.0, b.max + Vec3::Y * 10.0); // every box moves
+    /// }
+    /// let tree = Bvh::refit(&mut nodes, &indices, &boxes, shape, 0.0)?;
+    /// let probe = Aabb::new(Vec3::new(3.5, 10.5, 0.5), Vec3::new(4.5, 10.5, 0.5));
+    /// assert_eq!(tree.overlapping(&boxes, &probe, |_| {})?, 2);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn refit<P: Primitive>(
+        nodes: &'a mut [Node<B>],
+        indices: &'a [u32],
+        prims: &[P],
+        shape: Shape,
+        margin: f32,
+    ) -> Result<Bvh<'a, B>, Error> {
+        if nodes.len() < shape.nodes {
+            return Err(Error::NodeCapacity {
+                needed: shape.nodes,
+                available: nodes.len(),
+            });
+        }
+        if indices.len() < shape.indices {
+            return Err(Error::IndexCapacity {
+                needed: shape.indices,
+                available: indices.len(),
+            });
+        }
+        let (nodes, indices) = (&mut nodes[..shape.nodes], &indices[..shape.indices]);
+        refit_all(nodes, indices, prims, margin, ())?;
+        let nodes: &'a [Node<B>] = nodes;
+        Ok(Bvh::from_raw_parts(nodes, indices, shape.depth))
+    }
 }
 
 fn check_inputs<B: BoundingVolume, P: Primitive>(
@@ -301,5 +361,108 @@ impl<'s> Refit<'s> {
         }
         tally.updates(updated as u32);
         Ok(updated)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::query::brute_force;
+    use crate::{max_nodes, TopDown, Triangle};
+
+    /// 24 triangles in rows of six.
+    fn rows() -> [Triangle; 24] {
+        core::array::from_fn(|i| {
+            let o = Vec3::new((i % 6) as f32 * 1.5, (i / 6) as f32, 0.0);
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+    }
+
+    /// `Bvh::refit` on the whole worst-case buffers equals `refit_all` on
+    /// the used part, answers queries as brute force does on the moved
+    /// primitives, and keeps shape and depth.
+    #[test]
+    fn refit_on_whole_buffers_reopens_the_moved_tree() {
+        let tris = rows();
+        let mut nodes = [Node::<Aabb>::ZERO; max_nodes(24)];
+        let mut indices = [0u32; 24];
+        let built = TopDown::default()
+            .with_max_leaf_size(2)
+            .build(&tris, &mut nodes, &mut indices)
+            .unwrap();
+        let shape = built.shape();
+        assert!(shape.nodes < nodes.len() && shape.depth > 0);
+        let mut expected = nodes;
+        // Move every triangle up by 7 and one of them far aside.
+        let mut moved = tris.map(|t| t.translated(Vec3::Y * 7.0));
+        moved[5] = moved[5].translated(Vec3::Z * 40.0);
+        refit_all(&mut expected[..shape.nodes], &indices, &moved, 0.0, ()).unwrap();
+        let tree = Bvh::refit(&mut nodes, &indices, &moved, shape, 0.0).unwrap();
+        assert_eq!(tree.shape(), shape);
+        assert_eq!(tree.nodes(), &expected[..shape.nodes]);
+        for probe in [
+            Aabb::new(Vec3::new(0.0, 7.0, 0.0), Vec3::new(3.0, 9.0, 0.0)),
+            Aabb::new(Vec3::new(7.0, 7.0, 39.0), Vec3::new(9.0, 9.0, 41.0)),
+            Aabb::new(Vec3::splat(-5.0), Vec3::splat(-4.0)),
+        ] {
+            let got = tree.overlapping(&moved, &probe, |_| {}).unwrap();
+            assert_eq!(got, brute_force::overlapping(&moved, &probe, |_| {}));
+        }
+        assert_eq!(
+            tree.overlapping(
+                &moved,
+                &Aabb::new(Vec3::new(7.5, 7.0, 39.0), Vec3::new(8.0, 8.0, 41.0)),
+                |_| {}
+            )
+            .unwrap(),
+            1
+        );
+    }
+
+    /// Short arrays, a NaN primitive and a bad margin are errors found
+    /// before anything is written; an empty shape reopens the empty tree.
+    #[test]
+    fn refit_refuses_bad_input_untouched() {
+        let tris = rows();
+        let mut nodes = [Node::<Aabb>::ZERO; max_nodes(24)];
+        let mut indices = [0u32; 24];
+        let shape = TopDown::default()
+            .build(&tris, &mut nodes, &mut indices)
+            .unwrap()
+            .shape();
+        let before = nodes;
+        let short = Bvh::refit(&mut nodes[..shape.nodes - 1], &indices, &tris, shape, 0.0);
+        assert!(
+            matches!(short, Err(Error::NodeCapacity { .. })),
+            "{short:?}"
+        );
+        let short = Bvh::refit(&mut nodes, &indices[..3], &tris, shape, 0.0);
+        assert!(
+            matches!(short, Err(Error::IndexCapacity { .. })),
+            "{short:?}"
+        );
+        let mut nan = tris;
+        nan[3].v[1].y = f32::NAN;
+        let err = Bvh::refit(&mut nodes, &indices, &nan, shape, 0.0);
+        assert!(
+            matches!(err, Err(Error::NonFiniteCoordinate { .. })),
+            "{err:?}"
+        );
+        let err = Bvh::refit(&mut nodes, &indices, &tris, shape, -1.0);
+        assert!(matches!(err, Err(Error::InvalidConfig(_))), "{err:?}");
+        let err = Bvh::refit(&mut nodes, &indices, &tris[..4], shape, 0.0);
+        assert!(
+            matches!(err, Err(Error::PrimitiveCountMismatch { .. })),
+            "{err:?}"
+        );
+        assert_eq!(nodes, before);
+        let empty = Bvh::refit(&mut nodes, &indices, &tris[..0], Shape::default(), 0.0).unwrap();
+        assert!(empty.is_empty());
+        assert_eq!(
+            empty
+                .overlapping(&tris[..0], &Aabb::new(Vec3::ZERO, Vec3::ONE), |_| {})
+                .unwrap(),
+            0
+        );
     }
 }

@@ -138,7 +138,31 @@ pub struct Bvh<'a, B> {
     report: BuildReport,
 }
 
+/// How much of its storage a tree uses, and its depth: what it takes to open
+/// the same storage again (after a [refit](Bvh::refit), say) without
+/// checking it or saving numbers by hand. A plain `Copy` value, so it
+/// outlives the tree's borrow of the arrays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Shape {
+    /// Nodes in use, from the start of the node array.
+    pub nodes: usize,
+    /// Entries of the index array in use.
+    pub indices: usize,
+    /// Depth of the deepest leaf.
+    pub depth: usize,
+}
+
 impl<'a, B: BoundingVolume> Bvh<'a, B> {
+    /// This tree's [`Shape`]: keep it to reopen the storage later.
+    #[inline]
+    pub fn shape(&self) -> Shape {
+        Shape {
+            nodes: self.nodes.len(),
+            indices: self.indices.len(),
+            depth: self.depth as usize,
+        }
+    }
+
     /// Assembles a tree from storage without checks; builders use this.
     pub(crate) fn from_built(nodes: &'a [Node<B>], indices: &'a [u32], depth: u32) -> Self {
         Bvh {
