@@ -151,6 +151,9 @@ pub struct DynamicTree<'s, B> {
     /// Insertions that had to rotate against the configuration (the
     /// depth limit), reported by [`to_bvh`](Self::to_bvh).
     forced_rebalances: u32,
+    /// The largest object id of a live leaf (meaningless when empty): a
+    /// query's primitive slice must reach it.
+    max_item: u32,
 }
 
 fn area<B: BoundingVolume>(b: &B) -> f64 {
@@ -193,6 +196,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             leaves: 0,
             config,
             forced_rebalances: 0,
+            max_item: 0,
         })
     }
 
@@ -303,16 +307,38 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             return Err(e);
         }
         self.leaves += 1;
+        self.max_item = if self.leaves == 1 {
+            item
+        } else {
+            self.max_item.max(item)
+        };
         Ok(leaf)
     }
 
     /// Removes the object of leaf `leaf`.
     pub fn remove(&mut self, leaf: u32) -> Result<(), Error> {
         self.check_leaf(leaf)?;
+        let item = self.nodes[leaf as usize].item;
         self.detach(leaf);
         self.release(leaf);
         self.leaves -= 1;
+        self.forget(item);
         Ok(())
+    }
+
+    /// After the leaf of `item` left the tree: finds the new largest id if
+    /// it was the largest (a scan of the storage, so only when the largest
+    /// id leaves: rare for ids spread over the objects).
+    fn forget(&mut self, item: u32) {
+        if item == self.max_item && self.leaves > 0 {
+            self.max_item = self
+                .nodes
+                .iter()
+                .filter(|n| n.height == 0 && n.is_leaf())
+                .map(|n| n.item)
+                .max()
+                .unwrap_or(0);
+        }
     }
 
     /// Tells the tree that the object of `leaf` now has `bounds`. Returns
@@ -335,6 +361,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         if let Err(e) = self.attach(leaf) {
             self.release(leaf);
             self.leaves -= 1;
+            self.forget(item);
             return Err(e); // the object is no longer in the tree
         }
         Ok(true)
@@ -738,6 +765,102 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             Bvh::from_built_ids(&nodes[..done.count], &indices[..n], done.depth, bound)
                 .with_build_report(report),
         )
+    }
+}
+
+/// Every query runs on the dynamic tree directly, with no copy into a
+/// [`Bvh`]: region, ray, nearest and pair queries (with every traversal and
+/// descent rule), and a [`Bvh`] or layout against it.
+///
+/// Node ids are storage indices; a leaf holds one object, its id the
+/// `item` given to [`insert`](DynamicTree::insert). A query takes the
+/// objects' primitives as a slice indexed by those ids (long enough for the
+/// largest live id; ids need not be dense), and tests them at the leaves:
+/// the answer is exact for the primitives given, not for the fat volumes.
+/// That needs each primitive's bounds inside its leaf's fat volume, which
+/// holds when the slice holds what was last given to `insert` or `update`.
+///
+/// ```
+/// use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree};
+/// use bvhkit::{Aabb, Pairs, Query};
+/// use glam::Vec3;
+/// // Ten moving boxes; the slice of their current bounds is the primitives.
+/// let mut boxes: Vec<Aabb> = (0..10)
+///     .map(|i| Aabb::new(Vec3::new(i as f32, 0.0, 0.0), Vec3::new(i as f32 + 0.5, 0.5, 0.5)))
+///     .collect();
+/// let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 10 - 1];
+/// let config = DynamicConfig { margin: 0.2, ..Default::default() };
+/// let mut tree = DynamicTree::new(&mut storage, config)?;
+/// let handles: Vec<u32> = (0..10).map(|i| tree.insert(i, &boxes[i as usize])).collect::<Result<_, _>>()?;
+/// // Box 3 moves onto box 4.
+/// boxes[3] = Aabb::new(Vec3::new(3.8, 0.0, 0.0), Vec3::new(4.3, 0.5, 0.5));
+/// tree.update(handles[3], &boxes[3])?;
+/// // A region query, straight on the tree.
+/// let region = Aabb::new(Vec3::new(4.1, 0.0, 0.0), Vec3::new(4.2, 1.0, 1.0));
+/// let mut hits = Vec::new();
+/// tree.overlapping(&boxes, &region, |i| hits.push(i))?;
+/// hits.sort();
+/// assert_eq!(hits, [3, 4]);
+/// // A pair query of the tree against itself: (3, 4) and (4, 3), and every box with itself.
+/// let pairs = Pairs::new(&tree, &boxes, &tree, &boxes).count()?;
+/// assert_eq!(pairs, 10 + 2);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+impl<B: BoundingVolume> crate::tree::Hierarchy for DynamicTree<'_, B> {
+    type Bv = B;
+    const ARITY: usize = 2;
+
+    #[inline(always)]
+    fn root(&self) -> u32 {
+        self.root
+    }
+
+    #[inline(always)]
+    fn bv(&self, node: u32) -> B {
+        self.nodes[node as usize].bv
+    }
+
+    #[inline(always)]
+    fn content(&self, node: u32) -> crate::tree::Content<'_> {
+        let n = &self.nodes[node as usize];
+        if n.is_leaf() {
+            crate::tree::Content::Leaf(core::slice::from_ref(&n.item))
+        } else {
+            crate::tree::Content::Inner(crate::tree::Kids::two(n.left, n.right))
+        }
+    }
+
+    #[inline(always)]
+    fn is_leaf(&self, node: u32) -> bool {
+        self.nodes[node as usize].is_leaf()
+    }
+
+    fn depth(&self) -> usize {
+        self.height()
+    }
+
+    fn primitive_count(&self) -> usize {
+        self.len()
+    }
+
+    fn index_bound(&self) -> usize {
+        if self.is_empty() {
+            0
+        } else {
+            (self.max_item as usize).saturating_add(1)
+        }
+    }
+
+    fn dense_ids(&self) -> bool {
+        false
+    }
+
+    fn node_count(&self) -> usize {
+        (2 * self.len()).saturating_sub(1)
+    }
+
+    fn bytes(&self) -> usize {
+        self.node_count() * core::mem::size_of::<DynNode<B>>()
     }
 }
 

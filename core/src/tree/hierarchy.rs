@@ -187,6 +187,15 @@ pub trait Hierarchy {
     fn index_bound(&self) -> usize {
         self.primitive_count()
     }
+    /// Whether the leaves name exactly the ids `0..primitive_count()`, as
+    /// every builder's tree does. A query on such a tree then takes a
+    /// primitive slice of exactly that length, which catches a slice of the
+    /// wrong mesh. A tree whose ids the caller chose (a
+    /// [`DynamicTree`](crate::builders::DynamicTree), a snapshot of one after
+    /// removals) says `false`: the slice need only hold every id named.
+    fn dense_ids(&self) -> bool {
+        self.index_bound() == self.primitive_count()
+    }
     /// Number of logical nodes (leaves and internal nodes).
     fn node_count(&self) -> usize;
     /// Bytes of storage in use: node records and the primitive index array.
@@ -247,7 +256,7 @@ pub(crate) fn check_query<H: Hierarchy + ?Sized>(h: &H, given: usize) -> Result<
     // tree was built over, as long. Leaves naming ids with gaps (a dynamic
     // tree after removals): the slice must hold every id named.
     let (count, bound) = (h.primitive_count(), h.index_bound());
-    let fits = if bound == count {
+    let fits = if h.dense_ids() {
         given == count
     } else {
         given >= bound

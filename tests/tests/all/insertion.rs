@@ -155,6 +155,95 @@ fn run<B: BoundingVolume>(
         brute_force::pairs(&compact, &compact, |i, j| want_pairs.push((i, j)));
         pairs.sort_unstable();
         prop_assert_eq!(pairs, want_pairs);
+        // The same questions asked of the dynamic tree itself (no export),
+        // with the primitives indexed by item id.
+        direct_queries(&tree, &prims, &live, other, &t_other)?;
+    }
+    Ok(())
+}
+
+/// Every query on a [`DynamicTree`] directly equals brute force over the
+/// live objects: regions in every order, rays in both orders, nearest,
+/// pairs against a built tree and against itself with every traversal.
+/// `prims` is indexed by item; items not in `live` lie far away.
+fn direct_queries<B: BoundingVolume>(
+    tree: &DynamicTree<'_, B>,
+    prims: &[Aabb],
+    live: &[(u32, u32, Aabb)],
+    other: &[Triangle],
+    t_other: &bvhkit::Bvh<'_, B>,
+) -> Result<(), TestCaseError> {
+    use bvhkit::{Hierarchy, Order, Pairs, Query, Ray, RayOrder};
+    let is_live = |i: u32| live.iter().any(|l| l.0 == i);
+    prop_assert_eq!(tree.primitive_count(), live.len());
+    let top = live.iter().map(|l| l.0).max().unwrap();
+    prop_assert_eq!(tree.index_bound(), top as usize + 1);
+    // A slice too short to hold the largest id is an error, not a panic.
+    let short = tree.overlapping(&prims[..top as usize], &prims[0], |_| {});
+    let refused = matches!(short, Err(Error::PrimitiveCountMismatch { .. }));
+    prop_assert!(refused, "a short slice gave {:?}", short);
+    let region = Aabb::new(Vec3::new(-3.0, -3.0, -3.0), Vec3::new(4.0, 2.0, 5.0));
+    let mut want = Vec::new();
+    brute_force::overlapping(prims, &region, |i| want.push(i));
+    want.retain(|&i| is_live(i));
+    let mut queue = vec![0u32; tree.breadth_first_queue()];
+    for order in 0..3 {
+        let order = match order {
+            0 => Order::DepthFirst,
+            1 => Order::Recursive,
+            _ => Order::BreadthFirst(&mut queue),
+        };
+        let mut got = Vec::new();
+        tree.search(prims, &region, order, (), |i| got.push(i))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &want, "region on the dynamic tree");
+    }
+    // Rays and nearest: the far filler boxes are out of the ray's reach
+    // and never nearest while a live box exists.
+    let ray = Ray::new(
+        Vec3::new(-12.0, 0.3, -0.2),
+        Vec3::new(1.0, 0.05, 0.02),
+        100.0,
+    )
+    .unwrap();
+    let want = brute_force::ray_closest(prims, &ray);
+    for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+        prop_assert_eq!(tree.cast_ray(prims, &ray, order, ()).unwrap(), want);
+    }
+    let probe = Vec3::new(0.5, -0.25, 1.0);
+    prop_assert_eq!(
+        tree.nearest(prims, probe, ()).unwrap(),
+        brute_force::nearest(prims, probe)
+    );
+    let mut want = Vec::new();
+    brute_force::pairs(prims, other, |i, j| want.push((i, j)));
+    want.retain(|&(i, _)| is_live(i));
+    let mut want_self = Vec::new();
+    brute_force::pairs(prims, prims, |i, j| want_self.push((i, j)));
+    want_self.retain(|&(i, j)| is_live(i) && is_live(j));
+    for traversal in all_traversals() {
+        let mut got = Vec::new();
+        Pairs::new(tree, prims, t_other, other)
+            .traversal(traversal)
+            .for_each(|i, j| got.push((i, j)))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &want, "dynamic against built, {:?}", traversal);
+        let mut got = Vec::new();
+        Pairs::new(t_other, other, tree, prims)
+            .traversal(traversal)
+            .for_each(|j, i| got.push((i, j)))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &want, "built against dynamic, {:?}", traversal);
+        let mut got = Vec::new();
+        Pairs::new(tree, prims, tree, prims)
+            .traversal(traversal)
+            .for_each(|i, j| got.push((i, j)))
+            .unwrap();
+        got.sort_unstable();
+        prop_assert_eq!(&got, &want_self, "dynamic against itself, {:?}", traversal);
     }
     Ok(())
 }
@@ -429,6 +518,70 @@ fn a_dynamic_tree_with_removed_ids_answers_by_id_and_never_panics() {
         bvhkit::layout::Wide::from_bvh(&bvh, &mut wide),
         Err(Error::InvalidTree(_))
     ));
+}
+
+#[test]
+fn a_dynamic_tree_is_queried_in_place_by_id() {
+    use bvhkit::{Hierarchy, Pairs, Query};
+    let tris: Vec<Triangle> = (0..10)
+        .map(|i| {
+            let o = Vec3::new(i as f32 * 0.6, 0.0, 0.0);
+            Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+        })
+        .collect();
+    let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * tris.len()];
+    let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+    // The empty tree answers every query with nothing.
+    let everything = Aabb::new(Vec3::splat(-10.0), Vec3::splat(10.0));
+    assert_eq!(tree.overlapping(&tris, &everything, |_| {}), Ok(0));
+    assert_eq!(Pairs::new(&tree, &tris, &tree, &tris).count(), Ok(0));
+    assert_eq!(tree.nearest(&tris, Vec3::ZERO, ()), Ok(None));
+    let handles: Vec<u32> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            tree.insert(i as u32, &bvhkit::Primitive::bounds(t))
+                .unwrap()
+        })
+        .collect();
+    tree.remove(handles[3]).unwrap();
+    tree.remove(handles[9]).unwrap(); // the largest id: the bound shrinks
+    assert_eq!((tree.primitive_count(), tree.index_bound()), (8, 9));
+    assert!(!tree.dense_ids());
+    // Ids are the caller's: a slice longer than the largest id is fine.
+    let mut found = Vec::new();
+    tree.overlapping(&tris, &everything, |i| found.push(i))
+        .unwrap();
+    found.sort_unstable();
+    assert_eq!(found, [0, 1, 2, 4, 5, 6, 7, 8]);
+    // One short of the largest id is an error naming both lengths.
+    assert_eq!(
+        tree.overlapping(&tris[..8], &everything, |_| {}),
+        Err(Error::PrimitiveCountMismatch { tree: 9, given: 8 })
+    );
+    let mut want = Vec::new();
+    brute_force::pairs(&tris, &tris, |i, j| {
+        if ![3, 9].contains(&i) {
+            want.push((i, j));
+        }
+    });
+    let mut got = Vec::new();
+    Pairs::new(&tree, &tris, &other(&tris), &tris)
+        .exact()
+        .for_each(|i, j| got.push((i, j)))
+        .unwrap();
+    got.sort_unstable();
+    want.retain(|&(i, j)| bvhkit::Intersects::intersects(&tris[i as usize], &tris[j as usize]));
+    want.sort_unstable();
+    assert_eq!(got, want);
+    // Emptied again, it answers nothing; the bound is back to zero.
+    for (i, &h) in handles.iter().enumerate() {
+        if i != 3 && i != 9 {
+            tree.remove(h).unwrap();
+        }
+    }
+    assert_eq!((tree.node_count(), tree.index_bound()), (0, 0));
+    assert_eq!(tree.overlapping(&tris, &everything, |_| {}), Ok(0));
 }
 
 /// A dense tree over the same triangles, for the other side of pair queries.
