@@ -16,7 +16,7 @@ use crate::builders::TopDown;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::narrow::Intersects;
 use crate::primitive::Primitive;
-use crate::query::{DescentRule, PairTraversal, Pairs};
+use crate::query::{DescentRule, PairTraversal, Pairs, SelfPairs};
 use crate::transform::{Rigid, Transform};
 use crate::tree::{Bvh, Node};
 use crate::Error;
@@ -71,7 +71,8 @@ pub fn world_bounds<B: BoundingVolume, P>(object: &Object<'_, B, P>) -> Option<A
 
 /// Broad phase: calls `f(a, b)` (with `a < b`) for every object pair whose
 /// world boxes overlap; returns the count. Builds a hierarchy over the
-/// objects' world boxes in `scratch` and queries it against itself.
+/// objects' world boxes in `scratch` and queries it against itself
+/// ([`SelfPairs`]).
 pub fn object_pairs<B: BoundingVolume, P>(
     objects: &[Object<'_, B, P>],
     scratch: &mut BroadPhase<'_>,
@@ -94,8 +95,10 @@ pub fn object_pairs<B: BoundingVolume, P>(
     let boxes = &*boxes;
     let tree = TopDown::default().build(boxes, scratch.nodes, scratch.indices)?;
     let mut found = 0;
-    Pairs::new(&tree, boxes, &tree, boxes).for_each(|a, b| {
-        if a < b && !objects[a as usize].tree.is_empty() && !objects[b as usize].tree.is_empty() {
+    // The tree against itself, each pair once (not both orders and every
+    // object with itself, half of it thrown away).
+    SelfPairs::new(&tree, boxes).for_each(|a, b| {
+        if !objects[a as usize].tree.is_empty() && !objects[b as usize].tree.is_empty() {
             f(a, b);
             found += 1;
         }

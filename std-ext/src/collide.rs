@@ -344,6 +344,212 @@ where
     })
 }
 
+/// What `collide --self` measured: one mesh against itself, each pair of
+/// triangles `i < j` once.
+#[derive(Clone, Debug, Serialize)]
+pub struct SelfReport {
+    /// Scene description.
+    pub scene: String,
+    /// Triangles in the mesh.
+    pub triangles: usize,
+    /// Bounding volume.
+    pub volume: String,
+    /// Builder preset.
+    pub builder: String,
+    /// Traversal kind (how sibling subtrees are walked against each other).
+    pub traversal: String,
+    /// Descent rule (for stack / recursive).
+    pub descent: String,
+    /// Median build time of the tree.
+    pub build_ms: f64,
+    /// `Nv`: bounding-volume pair tests.
+    pub bv_tests: u64,
+    /// `Np`: primitive pair tests.
+    pub prim_tests: u64,
+    /// Pairs `i < j` whose boxes overlap and which share no vertex.
+    pub candidate_pairs: usize,
+    /// Pairs `i < j` whose boxes overlap but which share a vertex
+    /// (neighbours: skipped, never tested exactly).
+    pub adjacent_pairs: usize,
+    /// Candidate pairs that really touch (exact test): the self-intersections.
+    pub intersecting_pairs: usize,
+    /// Median time of the exact self query.
+    pub time_ms: f64,
+    /// Candidate pairs by an independent sort-and-sweep, when verified.
+    pub reference_pairs: Option<usize>,
+    /// Whether candidates and intersections equal the sweep's, when verified.
+    pub verified: Option<bool>,
+}
+
+/// `collide --self`: the mesh's tree against itself. Two triangles share a
+/// vertex when they have a corner at the same position (the loaders keep
+/// positions only; for a welded mesh that is the same as sharing a vertex
+/// index, and two corners at one point touch whatever their indices).
+pub fn run_self(
+    name: &str,
+    mesh: &[Triangle],
+    opts: &CollideOptions,
+) -> Result<SelfReport, String> {
+    match opts.volume.as_str() {
+        "aabb" => self_with::<Aabb>(name, mesh, opts),
+        "sphere" => self_with::<Sphere>(name, mesh, opts),
+        "obb" => self_with::<Obb>(name, mesh, opts),
+        "obb-dito" => self_with::<bvhkit::ObbDito>(name, mesh, opts),
+        "14-dop" => self_with::<Dop14>(name, mesh, opts),
+        "18-dop" => self_with::<Dop18>(name, mesh, opts),
+        "26-dop" => self_with::<Dop26>(name, mesh, opts),
+        other => Err(format!("unknown volume '{other}' (one of {VOLUMES:?})")),
+    }
+}
+
+fn self_with<B: BoundingVolume>(
+    name: &str,
+    mesh: &[Triangle],
+    opts: &CollideOptions,
+) -> Result<SelfReport, String> {
+    use bvhkit::query::{Adjacent, SelfPairs};
+    let builder = Builder::by_name(&opts.builder).ok_or_else(|| {
+        format!(
+            "unknown builder '{}' (one of {:?})",
+            opts.builder,
+            crate::builders::names()
+        )
+    })?;
+    let trav = traversal(&opts.traversal, opts.descent)?;
+    let err = |e: bvhkit::Error| e.to_string();
+    let (build, tree) = median_time(opts.runs, || builder.build::<B>(mesh));
+    let tree = tree.map_err(err)?;
+    let t = tree.view();
+    let q = || SelfPairs::new(&t, mesh).traversal(trav);
+    // One counted run: every overlapping pair, sorted into neighbours,
+    // candidates and intersections.
+    let mut counts = Counts::default();
+    let (mut candidates, mut adjacent) = (0usize, 0usize);
+    let mut contacts = Vec::new();
+    q().keep_adjacent()
+        .counted(&mut counts)
+        .for_each(|i, j| {
+            let (p, r) = (&mesh[i as usize], &mesh[j as usize]);
+            if p.adjacent(r) {
+                adjacent += 1;
+            } else {
+                candidates += 1;
+                if p.intersects(r) {
+                    contacts.push((i, j));
+                }
+            }
+        })
+        .map_err(err)?;
+    let mut out = Vec::with_capacity(contacts.len());
+    let (time, r) = median_time(opts.runs, || {
+        out.clear();
+        q().exact().for_each(|i, j| out.push((i, j)))
+    });
+    r.map_err(err)?;
+    let (reference_pairs, verified) = if opts.verify {
+        let sweep: Vec<(u32, u32)> = sweep_self_pairs(mesh)
+            .into_iter()
+            .filter(|&(i, j)| !mesh[i as usize].adjacent(&mesh[j as usize]))
+            .collect();
+        let touching: Vec<(u32, u32)> = sweep
+            .iter()
+            .copied()
+            .filter(|&(i, j)| mesh[i as usize].intersects(&mesh[j as usize]))
+            .collect();
+        contacts.sort_unstable();
+        out.sort_unstable();
+        let ok = sweep.len() == candidates && touching == contacts && touching == out;
+        (Some(sweep.len()), Some(ok))
+    } else {
+        (None, None)
+    };
+    Ok(SelfReport {
+        scene: name.to_string(),
+        triangles: mesh.len(),
+        volume: B::NAME.to_string(),
+        builder: opts.builder.clone(),
+        traversal: trav.name().to_string(),
+        descent: match trav {
+            PairTraversal::Stack(d) | PairTraversal::Recursive(d) => d.name().to_string(),
+            _ => String::new(),
+        },
+        build_ms: build_ms(build),
+        bv_tests: counts.bv_tests,
+        prim_tests: counts.prim_tests,
+        candidate_pairs: candidates,
+        adjacent_pairs: adjacent,
+        intersecting_pairs: contacts.len(),
+        time_ms: time.as_secs_f64() * 1e3,
+        reference_pairs,
+        verified,
+    })
+}
+
+/// Every pair `i < j` whose boxes overlap, sorted, by sort-and-sweep on x:
+/// no tree involved, so it checks the self query independently, and fast
+/// enough for real meshes (brute force is quadratic).
+pub fn sweep_self_pairs(mesh: &[Triangle]) -> Vec<(u32, u32)> {
+    let mut boxes: Vec<(Aabb, u32)> = mesh
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (t.bounds(), i as u32))
+        .collect();
+    boxes.sort_unstable_by(|x, y| x.0.min.x.total_cmp(&y.0.min.x));
+    let mut pairs = Vec::new();
+    for (k, (b, i)) in boxes.iter().enumerate() {
+        for (c, j) in &boxes[k + 1..] {
+            if c.min.x > b.max.x {
+                break;
+            }
+            if b.overlaps(c) {
+                pairs.push((*i.min(j), *i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
+}
+
+/// The self report as text.
+pub fn render_self(r: &SelfReport) -> String {
+    let mut s = format!(
+        "scene: {}: {} triangles, against itself\n\
+         tree: {} volumes, builder {}, built in {:.2} ms\n\
+         query: {} traversal{}, each pair i < j once\n\n\
+         bv tests (Nv)        {:>12}\n\
+         prim tests (Np)      {:>12}\n\
+         adjacent pairs       {:>12} (share a vertex: skipped)\n\
+         candidate pairs      {:>12}\n\
+         intersecting pairs   {:>12}\n\
+         time                 {:>12.3} ms (median)\n",
+        r.scene,
+        r.triangles,
+        r.volume,
+        r.builder,
+        r.build_ms,
+        r.traversal,
+        if r.descent.is_empty() {
+            String::new()
+        } else {
+            format!(", descend {}", r.descent)
+        },
+        r.bv_tests,
+        r.prim_tests,
+        r.adjacent_pairs,
+        r.candidate_pairs,
+        r.intersecting_pairs,
+        r.time_ms,
+    );
+    if let (Some(n), Some(ok)) = (r.reference_pairs, r.verified) {
+        s += &format!(
+            "sort and sweep       {:>12} candidates: {}\n",
+            n,
+            if ok { "match" } else { "MISMATCH" }
+        );
+    }
+    s
+}
+
 /// The report as text.
 pub fn render(r: &CollideReport) -> String {
     let mut s = format!(
@@ -419,6 +625,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn self_collision_verifies_in_every_traversal() {
+        // A strip of neighbours (shared corners) and one triangle folded
+        // through it: neighbours are skipped, the fold is found.
+        let mut mesh: Vec<Triangle> = (0..40)
+            .map(|i| {
+                let x = i as f32 * 0.5;
+                Triangle::new(
+                    Vec3::new(x, 0.0, 0.0),
+                    Vec3::new(x + 0.5, 0.0, 0.0),
+                    Vec3::new(x, 1.0, 0.0),
+                )
+            })
+            .collect();
+        mesh.push(Triangle::new(
+            Vec3::new(3.1, 0.2, -1.0),
+            Vec3::new(3.1, 0.2, 1.0),
+            Vec3::new(7.3, 0.3, 0.0),
+        ));
+        for traversal in TRAVERSALS {
+            let opts = CollideOptions {
+                traversal: traversal.into(),
+                runs: 1,
+                verify: true,
+                ..CollideOptions::default()
+            };
+            let r = run_self("strip", &mesh, &opts).unwrap();
+            assert_eq!(r.verified, Some(true), "{traversal}");
+            assert!(r.adjacent_pairs >= 39, "{r:?}");
+            assert!(r.intersecting_pairs > 0 && r.candidate_pairs >= r.intersecting_pairs);
+            assert_eq!(r.reference_pairs, Some(r.candidate_pairs));
+        }
+        // The closed rock does not cut itself.
+        let rock = scene::rock(3, 1);
+        let r = run_self(
+            "rock",
+            &rock,
+            &CollideOptions {
+                runs: 1,
+                verify: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!((r.verified, r.intersecting_pairs), (Some(true), 0));
+        assert!(r.adjacent_pairs > rock.len());
     }
 
     #[test]

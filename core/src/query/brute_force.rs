@@ -45,6 +45,33 @@ pub fn pairs<P: Primitive, Q: Primitive>(a: &[P], b: &[Q], mut f: impl FnMut(u32
     found
 }
 
+/// Every pair `(i, j)`, `i < j`, of one set whose bounds overlap; returns
+/// the count. The reference for [`SelfPairs`](super::SelfPairs) (which by
+/// default also skips [`Adjacent`](super::Adjacent) pairs: filter this
+/// answer the same way to compare).
+///
+/// ```
+/// use bvhkit::{brute_force, Aabb};
+/// use glam::Vec3;
+/// let boxes = [Aabb::new(Vec3::ZERO, Vec3::ONE), Aabb::new(Vec3::ONE, Vec3::splat(2.0)), Aabb::new(Vec3::splat(5.0), Vec3::splat(6.0))];
+/// let mut pairs = Vec::new();
+/// assert_eq!(brute_force::self_pairs(&boxes, |i, j| pairs.push((i, j))), 1);
+/// assert_eq!(pairs, [(0, 1)]); // touching counts; no box with itself
+/// ```
+pub fn self_pairs<P: Primitive>(prims: &[P], mut f: impl FnMut(u32, u32)) -> usize {
+    let mut found = 0;
+    for (i, p) in prims.iter().enumerate() {
+        let pb = p.bounds();
+        for (j, q) in prims.iter().enumerate().skip(i + 1) {
+            if pb.overlaps(&q.bounds()) {
+                f(i as u32, j as u32);
+                found += 1;
+            }
+        }
+    }
+    found
+}
+
 /// Every pair `(i, j)` that `answer` accepts, with `b[j]` first placed in A's
 /// frame by `frame` (for example a [`Rigid`](crate::Rigid) motion); returns
 /// the count. The reference for [`Pairs`](crate::Pairs) with any frame and

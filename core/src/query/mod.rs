@@ -17,6 +17,7 @@ mod heap;
 mod nearest;
 mod pair;
 mod ray;
+mod self_pairs;
 mod single;
 pub(crate) mod stack;
 mod tally;
@@ -30,5 +31,6 @@ pub use pair::{
     Same, PAIR_STACK, SMALL_PAIR_STACK, WIDE_PAIR_STACK,
 };
 pub use ray::{Hit, Ray, RayOrder, RayTarget};
+pub use self_pairs::{Adjacent, KeepAll, SelfFilter, SelfPairs, SkipAdjacent, SkipIds};
 pub use single::{Order, Query, Region};
 pub use tally::{CostModel, Counts, Tally};

@@ -29,7 +29,7 @@ pub const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
 
 /// Spare entries the explicit pair stack keeps past its capacity, so that a
 /// step can write all its child pairs before knowing which it keeps.
-const SLACK: usize = MAX_CHILDREN * MAX_CHILDREN;
+pub(super) const SLACK: usize = MAX_CHILDREN * MAX_CHILDREN;
 
 /// Stack entries for a pair traversal when either tree is 4-wide: a
 /// two-sided step leaves up to 15 pairs waiting. Used only for wide layouts,
@@ -534,13 +534,13 @@ struct PrimitivePairs<'q, P, Q, F, X, S> {
 /// A leaf as the leaf-pair step sees it: its primitive ids and, if the
 /// tree keeps them ([`Hierarchy::leaf_bounds`]), their bounds side by side.
 #[derive(Clone, Copy)]
-struct Leaf<'a> {
-    ids: &'a [u32],
-    bounds: Option<&'a [Aabb]>,
+pub(super) struct Leaf<'a> {
+    pub(super) ids: &'a [u32],
+    pub(super) bounds: Option<&'a [Aabb]>,
 }
 
 /// Decides every primitive pair of two leaves.
-trait PairStep {
+pub(super) trait PairStep {
     /// Every pair of `la` (A's primitives) and `lb` (B's); each pair counts
     /// as one primitive test (`Np`) whether the box prefilter or the answer
     /// settled it, so the counts do not depend on how the test is vectorised.
@@ -606,18 +606,18 @@ where
 
 /// The machinery shared by every traversal: node access across frames,
 /// counted tests, and the leaf-pair callback.
-struct Walk<'q, A, H, F, T, L> {
-    a: &'q A,
-    b: &'q H,
-    frame: &'q F,
+pub(super) struct Walk<'q, A, H, F, T, L> {
+    pub(super) a: &'q A,
+    pub(super) b: &'q H,
+    pub(super) frame: &'q F,
     /// Move B's volumes so that they contain their primitives' new boxes
     /// (for box-comparing answers).
-    with_boxes: bool,
-    tally: T,
-    leaf: L,
+    pub(super) with_boxes: bool,
+    pub(super) tally: T,
+    pub(super) leaf: L,
 }
 
-type Flow = ControlFlow<()>;
+pub(super) type Flow = ControlFlow<()>;
 
 /// Volumes of up to [`MAX_CHILDREN`] children, fetched once per decision.
 type ChildVolumes<B> = ([u32; MAX_CHILDREN], [B; MAX_CHILDREN], usize);
@@ -632,7 +632,7 @@ where
 {
     /// B's node volume in A's frame.
     #[inline(always)]
-    fn b_bv(&mut self, j: u32) -> A::Bv {
+    pub(super) fn b_bv(&mut self, j: u32) -> A::Bv {
         let bv = self.b.bv(j);
         if !F::MOVES {
             return self.frame.bv(&bv);
@@ -646,7 +646,7 @@ where
     }
 
     #[inline(always)]
-    fn test(&mut self, x: &A::Bv, y: &A::Bv) -> bool {
+    pub(super) fn test(&mut self, x: &A::Bv, y: &A::Bv) -> bool {
         self.tally.bv_tests(1);
         x.overlaps(y)
     }
@@ -726,7 +726,7 @@ where
 
     /// The generic informed depth-first traversal, recursive. `yb` is B's
     /// node `j` already in A's frame.
-    fn recurse<D: DescentRule>(
+    pub(super) fn recurse<D: DescentRule>(
         &mut self,
         rule: &D,
         i: u32,
@@ -797,6 +797,18 @@ where
     /// so only the stack array in use occupies the caller's stack.
     #[inline(never)]
     fn stack<D: DescentRule, const N: usize>(&mut self, rule: &D) -> Result<Flow, Error> {
+        self.stack_from::<D, N>(rule, self.a.root(), self.b.root())
+    }
+
+    /// [`stack`](Self::stack) from A's node `ra` against B's node `rb`
+    /// instead of the roots (a self query walks sibling subtrees).
+    #[inline(always)]
+    pub(super) fn stack_from<D: DescentRule, const N: usize>(
+        &mut self,
+        rule: &D,
+        ra: u32,
+        rb: u32,
+    ) -> Result<Flow, Error> {
         // `N` counts `SLACK` spare entries past the capacity: they let a
         // step write every child pair unconditionally and keep it by
         // advancing `top` by the test's outcome (no branch on an
@@ -831,7 +843,6 @@ where
             }};
         }
         let (a, b) = (self.a, self.b);
-        let (ra, rb) = (a.root(), b.root());
         let (xa, yb) = (a.bv(ra), self.b_bv(rb));
         if self.test(&xa, &yb) {
             push!(ra, rb, 0);
@@ -960,15 +971,21 @@ where
     /// Leaf-directed: depth-first over A pruned by B's root; at each leaf of
     /// A, a single-tree descent of B with that leaf's volume.
     fn leaf_directed(&mut self) -> Result<Flow, Error> {
+        self.leaf_directed_from(self.a.root(), self.b.root())
+    }
+
+    /// [`leaf_directed`](Self::leaf_directed) over A's subtree `ra` and
+    /// B's subtree `sub_b`.
+    pub(super) fn leaf_directed_from(&mut self, ra: u32, sub_b: u32) -> Result<Flow, Error> {
         let (a, b) = (self.a, self.b);
         let depth = a.depth().max(b.depth());
-        let rb = self.b_bv(b.root());
-        let xa = a.bv(a.root());
+        let rb = self.b_bv(sub_b);
+        let xa = a.bv(ra);
         if !self.test(&xa, &rb) {
             return Ok(ControlFlow::Continue(()));
         }
-        let mut sa = Stack::<u32, DFS_STACK>::with(a.root(), depth);
-        let mut sb = Stack::<u32, DFS_STACK>::with(b.root(), depth);
+        let mut sa = Stack::<u32, DFS_STACK>::with(ra, depth);
+        let mut sb = Stack::<u32, DFS_STACK>::with(sub_b, depth);
         while let Some(i) = sa.pop() {
             let la = match a.content(i) {
                 Content::Inner(kids) => {
@@ -984,7 +1001,7 @@ where
             };
             // A leaf of A that overlaps B's root: descend B with its volume.
             let xb = a.bv(i);
-            sb.reset(b.root());
+            sb.reset(sub_b);
             while let Some(j) = sb.pop() {
                 match b.content(j) {
                     Content::Leaf(lb) => {

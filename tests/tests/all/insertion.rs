@@ -244,6 +244,15 @@ fn direct_queries<B: BoundingVolume>(
             .unwrap();
         got.sort_unstable();
         prop_assert_eq!(&got, &want_self, "dynamic against itself, {:?}", traversal);
+        let mut got = Vec::new();
+        let n = bvhkit::query::SelfPairs::new(tree, prims)
+            .traversal(traversal)
+            .for_each(|i, j| got.push((i, j)))
+            .unwrap();
+        got.sort_unstable();
+        let once: Vec<_> = want_self.iter().copied().filter(|&(i, j)| i < j).collect();
+        prop_assert_eq!(n, got.len());
+        prop_assert_eq!(&got, &once, "dynamic self query, {:?}", traversal);
     }
     Ok(())
 }

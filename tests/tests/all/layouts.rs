@@ -309,6 +309,9 @@ pub(crate) fn run_all<B: BoundingVolume>(
         if result.is_ok() {
             result = check_two(view, a, &tb, b, &motion, name);
         }
+        if result.is_ok() {
+            result = check_self(view, a, &name);
+        }
     });
     result?;
     // Layout against layout (A preorder-32 against B tri-node: mixed kinds).
@@ -353,6 +356,9 @@ pub(crate) fn run_boxes(
         }
         if result.is_ok() {
             result = check_two(view, a, &tb, b, &motion, name);
+        }
+        if result.is_ok() {
+            result = check_self(view, a, &name);
         }
     });
     result?;
