@@ -12,6 +12,9 @@
 //!
 //! All storage comes from the caller ([`BroadPhase`]); nothing allocates.
 
+mod tracker;
+pub use tracker::{PairEvent, PairTracker, Slot, StepReport, TrackerStorage};
+
 use crate::builders::TopDown;
 use crate::bv::{Aabb, BoundingVolume};
 use crate::narrow::Intersects;

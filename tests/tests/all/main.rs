@@ -9,6 +9,7 @@
 mod advisor;
 mod bad_input;
 mod bottom_up;
+mod broad_phase;
 mod empty;
 mod equivalence;
 mod fits;

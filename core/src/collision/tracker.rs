@@ -1,0 +1,402 @@
+//! An incremental broad phase: the overlapping pairs of many moving
+//! objects, kept from step to step, with begin and end events.
+//!
+//! Lecture: *collision detection system*, the broad phase, for objects that
+//! move. Rebuilding a tree over every object and querying it against itself
+//! each step costs the same whether one object moved or all did. Here the
+//! objects live in a [`DynamicTree`] with fat leaves (a small move costs
+//! nothing), and a step queries only the objects that moved: a pair of two
+//! objects that both stayed put cannot have changed. The new pair list is
+//! the old one without the movers' pairs, plus the movers' new pairs; the
+//! difference is reported as [`PairEvent::Begin`] and [`PairEvent::End`].
+//! When more than a quarter of the objects moved, one [`SelfPairs`] walk
+//! of the whole tree is cheaper than a query per mover, and is used
+//! instead (the same answer).
+//!
+//! A pair is two objects whose current boxes overlap (touching counts),
+//! decided on the boxes given, not on the fat leaves: the same answer as
+//! [`brute_force::self_pairs`](crate::brute_force::self_pairs) over the
+//! boxes of the objects present.
+
+use crate::builders::{DynNode, DynamicConfig, DynamicTree, NULL};
+use crate::bv::Aabb;
+use crate::query::{Query, SelfPairs};
+use crate::Error;
+
+/// What changed about a pair of objects (`a < b`) since the last step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum PairEvent {
+    /// The two boxes overlap now and did not before.
+    Begin(u32, u32),
+    /// The two boxes overlapped before and do not now (or one object left).
+    End(u32, u32),
+}
+
+/// One object's slot of a [`PairTracker`] (caller storage: one per id).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slot {
+    /// Its box as last given.
+    bounds: Aabb,
+    /// Its leaf in the tree, or [`NULL`] for an empty slot.
+    leaf: u32,
+    /// Whether it moved (or arrived) since the last step.
+    moved: bool,
+}
+
+impl Slot {
+    /// An empty slot, for initialising storage.
+    pub const EMPTY: Slot = Slot {
+        bounds: Aabb::EMPTY,
+        leaf: NULL,
+        moved: false,
+    };
+}
+
+/// The caller's storage for a [`PairTracker`] of up to `n` objects and `m`
+/// pairs: `2n - 1` tree nodes, `n` slots, `n` boxes, `n` entries for the
+/// movers, and two pair lists of `m` entries (the current one and the
+/// next).
+#[derive(Debug)]
+pub struct TrackerStorage<'s> {
+    /// Nodes of the dynamic tree.
+    pub nodes: &'s mut [DynNode<Aabb>],
+    /// One slot per object id.
+    pub slots: &'s mut [Slot],
+    /// One box per object id (the primitives the tree is queried with).
+    pub boxes: &'s mut [Aabb],
+    /// Ids of the objects that moved since the last step.
+    pub moved: &'s mut [u32],
+    /// The current pairs.
+    pub pairs: &'s mut [(u32, u32)],
+    /// Room for the next step's pairs.
+    pub next: &'s mut [(u32, u32)],
+}
+
+/// The pairs of overlapping boxes among moving objects, updated
+/// incrementally. Objects are named by ids below the slot count.
+///
+/// ```
+/// use bvhkit::collision::{PairEvent, PairTracker, Slot, TrackerStorage};
+/// use bvhkit::builders::{DynNode, DynamicConfig};
+/// use bvhkit::Aabb;
+/// use glam::Vec3;
+/// let unit = |x: f32| Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0));
+/// let (mut nodes, mut slots) = ([DynNode::EMPTY; 7], [Slot::EMPTY; 4]);
+/// let (mut boxes, mut moved) = ([Aabb::EMPTY; 4], [0u32; 4]);
+/// let (mut pairs, mut next) = ([(0, 0); 6], [(0, 0); 6]);
+/// let storage = TrackerStorage {
+///     nodes: &mut nodes, slots: &mut slots, boxes: &mut boxes,
+///     moved: &mut moved, pairs: &mut pairs, next: &mut next,
+/// };
+/// let mut world = PairTracker::new(storage, DynamicConfig { margin: 0.1, ..Default::default() })?;
+/// for (id, x) in [0.0, 0.5, 3.0, 9.0].into_iter().enumerate() {
+///     world.insert(id as u32, &unit(x))?;
+/// }
+/// let mut events = Vec::new();
+/// world.step(|e| events.push(e))?;
+/// assert_eq!(events, [PairEvent::Begin(0, 1)]);
+/// // Object 2 slides onto object 1 and away from nothing else.
+/// world.set_bounds(2, &unit(1.2))?;
+/// events.clear();
+/// world.step(|e| events.push(e))?;
+/// assert_eq!(events, [PairEvent::Begin(1, 2)]);
+/// assert_eq!(world.pairs(), [(0, 1), (1, 2)]);
+/// // Object 1 leaves: both its pairs end.
+/// world.remove(1)?;
+/// events.clear();
+/// world.step(|e| events.push(e))?;
+/// assert_eq!(events, [PairEvent::End(0, 1), PairEvent::End(1, 2)]);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct PairTracker<'s> {
+    tree: DynamicTree<'s, Aabb>,
+    slots: &'s mut [Slot],
+    boxes: &'s mut [Aabb],
+    moved: &'s mut [u32],
+    movers: usize,
+    pairs: &'s mut [(u32, u32)],
+    count: usize,
+    next: &'s mut [(u32, u32)],
+}
+
+/// What one [`PairTracker::step`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepReport {
+    /// Objects queried (moved, arrived or left since the last step).
+    pub queried: usize,
+    /// Pairs that began.
+    pub begun: usize,
+    /// Pairs that ended.
+    pub ended: usize,
+    /// Pairs now.
+    pub pairs: usize,
+}
+
+impl<'s> PairTracker<'s> {
+    /// An empty broad phase over `storage` (ids `0..storage.slots.len()`).
+    /// Errors: a buffer shorter than the slots need, or a bad `config`.
+    pub fn new(storage: TrackerStorage<'s>, config: DynamicConfig) -> Result<Self, Error> {
+        let n = storage.slots.len();
+        let short = |needed: usize, available: usize| Error::ScratchCapacity { needed, available };
+        if storage.nodes.len() < (2 * n).saturating_sub(1) {
+            return Err(Error::NodeCapacity {
+                needed: 2 * n - 1,
+                available: storage.nodes.len(),
+            });
+        }
+        if storage.boxes.len() < n {
+            return Err(short(n, storage.boxes.len()));
+        }
+        if storage.moved.len() < n {
+            return Err(short(n, storage.moved.len()));
+        }
+        if storage.next.len() < storage.pairs.len() {
+            return Err(short(storage.pairs.len(), storage.next.len()));
+        }
+        if n >= NULL as usize {
+            return Err(Error::IndexOverflow { count: n });
+        }
+        let tree = DynamicTree::new(storage.nodes, config)?;
+        storage.slots.fill(Slot::EMPTY);
+        Ok(PairTracker {
+            tree,
+            slots: storage.slots,
+            boxes: storage.boxes,
+            moved: storage.moved,
+            movers: 0,
+            pairs: storage.pairs,
+            count: 0,
+            next: storage.next,
+        })
+    }
+
+    /// The dynamic tree over the objects: every query runs on it, with
+    /// [`boxes`](Self::boxes) as the primitives.
+    pub fn tree(&self) -> &DynamicTree<'s, Aabb> {
+        &self.tree
+    }
+
+    /// The objects' boxes, by id (empty slots hold an empty box).
+    pub fn boxes(&self) -> &[Aabb] {
+        self.boxes
+    }
+
+    /// The pairs `(a, b)`, `a < b`, as of the last step, sorted.
+    pub fn pairs(&self) -> &[(u32, u32)] {
+        &self.pairs[..self.count]
+    }
+
+    /// Objects present.
+    pub fn len(&self) -> usize {
+        self.tree.len()
+    }
+
+    /// Whether no object is present.
+    pub fn is_empty(&self) -> bool {
+        self.tree.is_empty()
+    }
+
+    fn slot(&self, id: u32) -> Result<usize, Error> {
+        if (id as usize) < self.slots.len() {
+            Ok(id as usize)
+        } else {
+            Err(Error::InvalidConfig("object id past the tracker's slots"))
+        }
+    }
+
+    fn mark(&mut self, i: usize) {
+        if !self.slots[i].moved {
+            self.slots[i].moved = true;
+            self.moved[self.movers] = i as u32;
+            self.movers += 1;
+        }
+    }
+
+    /// Adds object `id` with box `bounds`; its pairs begin at the next step.
+    /// Errors: an id past the slots or already present, a bad box (the
+    /// object is not added then).
+    pub fn insert(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
+        let i = self.slot(id)?;
+        if self.slots[i].leaf != NULL {
+            return Err(Error::InvalidConfig("object id already present"));
+        }
+        let leaf = self.tree.insert(id, bounds)?;
+        self.slots[i].leaf = leaf;
+        self.slots[i].bounds = *bounds;
+        self.boxes[i] = *bounds;
+        self.mark(i);
+        Ok(())
+    }
+
+    /// Gives object `id` its new box. A box inside the object's fat leaf
+    /// costs no tree work; either way the object's pairs are rechecked at
+    /// the next step (only if the box changed).
+    pub fn set_bounds(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
+        let i = self.slot(id)?;
+        let leaf = self.slots[i].leaf;
+        if leaf == NULL {
+            return Err(Error::InvalidConfig("object id not present"));
+        }
+        if self.slots[i].bounds == *bounds {
+            return Ok(());
+        }
+        let before = self.tree.len();
+        if let Err(e) = self.tree.update(leaf, bounds) {
+            if self.tree.len() < before {
+                // The update could not reinsert the object (see
+                // `DynamicTree::update`): it left the tree, and its pairs
+                // end at the next step.
+                self.drop_object(i);
+            }
+            return Err(e);
+        }
+        self.slots[i].bounds = *bounds;
+        self.boxes[i] = *bounds;
+        self.mark(i);
+        Ok(())
+    }
+
+    fn drop_object(&mut self, i: usize) {
+        self.slots[i].leaf = NULL;
+        self.slots[i].bounds = Aabb::EMPTY;
+        self.boxes[i] = Aabb::EMPTY;
+        self.mark(i);
+    }
+
+    /// Removes object `id`; its pairs end at the next step.
+    pub fn remove(&mut self, id: u32) -> Result<(), Error> {
+        let i = self.slot(id)?;
+        let leaf = self.slots[i].leaf;
+        if leaf == NULL {
+            return Err(Error::InvalidConfig("object id not present"));
+        }
+        self.tree.remove(leaf)?;
+        self.drop_object(i);
+        Ok(())
+    }
+
+    /// Brings the pair list up to date: queries the tree with the box of
+    /// every object that moved, arrived or left since the last step, calls
+    /// `f` with each change (ends first, then begins, each group sorted),
+    /// and keeps the new list. Errors: the pair buffers are full (nothing
+    /// changes then: the old list and the pending movers stay).
+    pub fn step(&mut self, mut f: impl FnMut(PairEvent)) -> Result<StepReport, Error> {
+        let cap = self.next.len().min(self.pairs.len());
+        let movers = self.movers;
+        let moved = |slots: &[Slot], id: u32| slots[id as usize].moved;
+        if movers > self.tree.len() / 4 {
+            // Most objects moved: one self query of the whole tree shares
+            // the walk from the root that a query per mover would repeat.
+            let mut found = 0;
+            let next = &mut *self.next;
+            SelfPairs::new(&self.tree, &*self.boxes).for_each(|a, b| {
+                if found < cap {
+                    next[found] = (a, b);
+                }
+                found += 1;
+            })?;
+            if found > cap {
+                return Err(Error::ResultCapacity {
+                    found,
+                    capacity: cap,
+                });
+            }
+            self.next[..found].sort_unstable();
+            return Ok(self.finish(movers, found, &mut f));
+        }
+        // The old pairs with no mover in them stay as they are.
+        let old = &self.pairs[..self.count];
+        let stays = |&(a, b): &(u32, u32)| !moved(self.slots, a) && !moved(self.slots, b);
+        let kept = old.iter().filter(|p| stays(p)).count();
+        // Each mover's pairs, found by one region query with its box, go to
+        // the end of `next`, last first. A pair of two movers is taken from
+        // the smaller id's query only.
+        let room = cap - kept.min(cap);
+        let mut fresh = 0;
+        for &m in &self.moved[..movers] {
+            let slot = self.slots[m as usize];
+            if slot.leaf == NULL {
+                continue; // left: its pairs simply are not found again
+            }
+            let slots = &*self.slots;
+            let next = &mut *self.next;
+            self.tree.overlapping(self.boxes, &slot.bounds, |x| {
+                if x == m || (moved(slots, x) && x < m) {
+                    return;
+                }
+                if fresh < room {
+                    next[cap - 1 - fresh] = (m.min(x), m.max(x));
+                }
+                fresh += 1;
+            })?;
+        }
+        let found = kept + fresh;
+        if found > cap {
+            return Err(Error::ResultCapacity {
+                found,
+                capacity: cap,
+            });
+        }
+        // Sort the new pairs and merge them with the kept ones into the
+        // front of `next`: the write position never passes the next new
+        // pair to read, as kept + new fits the buffer.
+        let tail = cap - fresh;
+        self.next[tail..cap].sort_unstable();
+        let (mut w, mut j) = (0, tail);
+        for p in old.iter().filter(|p| stays(p)) {
+            while j < cap && self.next[j] < *p {
+                self.next[w] = self.next[j];
+                w += 1;
+                j += 1;
+            }
+            self.next[w] = *p;
+            w += 1;
+        }
+        while j < cap {
+            self.next[w] = self.next[j];
+            w += 1;
+            j += 1;
+        }
+        Ok(self.finish(movers, found, &mut f))
+    }
+
+    /// Reports the difference between the old list and the `found` sorted
+    /// pairs in `next` (ends first), makes `next` the list, clears the movers.
+    fn finish(&mut self, movers: usize, found: usize, f: &mut impl FnMut(PairEvent)) -> StepReport {
+        let (old, new) = (&self.pairs[..self.count], &self.next[..found]);
+        let mut report = StepReport {
+            queried: movers,
+            pairs: found,
+            ..StepReport::default()
+        };
+        diff(old, new, |p| {
+            f(PairEvent::End(p.0, p.1));
+            report.ended += 1;
+        });
+        diff(new, old, |p| {
+            f(PairEvent::Begin(p.0, p.1));
+            report.begun += 1;
+        });
+        core::mem::swap(&mut self.pairs, &mut self.next);
+        self.count = found;
+        for &m in &self.moved[..movers] {
+            self.slots[m as usize].moved = false;
+        }
+        self.movers = 0;
+        report
+    }
+}
+
+/// Calls `f` with every entry of sorted `a` that is not in sorted `b`.
+fn diff(a: &[(u32, u32)], b: &[(u32, u32)], mut f: impl FnMut((u32, u32))) {
+    let mut j = 0;
+    for &p in a {
+        while j < b.len() && b[j] < p {
+            j += 1;
+        }
+        if j == b.len() || b[j] != p {
+            f(p);
+        }
+    }
+}

@@ -1,0 +1,230 @@
+//! The incremental broad phase (`collision::PairTracker`): after any
+//! sequence of arrivals, moves and departures, each step's pair list equals
+//! brute force over the objects present, and its events are exactly the
+//! difference from the previous list.
+
+use bvhkit::builders::{DynNode, DynamicConfig};
+use bvhkit::collision::{PairEvent, PairTracker, Slot, TrackerStorage};
+use bvhkit::glam::Vec3;
+use bvhkit::{brute_force, Aabb, Error, Hierarchy, Query};
+use bvhkit_tests::*;
+use proptest::prelude::*;
+use std::collections::BTreeSet;
+
+#[derive(Clone, Debug)]
+enum Op {
+    Insert(u32, Vec3, f32),
+    Remove(u32),
+    Nudge(u32, Vec3),
+    Jump(u32, Vec3),
+    Step,
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    let v = |r: f32| (-r..r, -r..r, -r..r).prop_map(|(x, y, z)| Vec3::new(x, y, z));
+    prop_oneof![
+        4 => (0u32..40, v(6.0), 0.2f32..2.0).prop_map(|(i, o, s)| Op::Insert(i, o, s)),
+        1 => (0u32..40).prop_map(Op::Remove),
+        4 => (0u32..40, v(0.05)).prop_map(|(i, d)| Op::Nudge(i, d)),
+        2 => (0u32..40, v(6.0)).prop_map(|(i, o)| Op::Jump(i, o)),
+        3 => Just(Op::Step),
+    ]
+}
+
+struct Storage {
+    nodes: Vec<DynNode<Aabb>>,
+    slots: Vec<Slot>,
+    boxes: Vec<Aabb>,
+    moved: Vec<u32>,
+    pairs: Vec<(u32, u32)>,
+    next: Vec<(u32, u32)>,
+}
+
+impl Storage {
+    fn new(n: usize, m: usize) -> Self {
+        Storage {
+            nodes: vec![DynNode::EMPTY; 2 * n - 1],
+            slots: vec![Slot::EMPTY; n],
+            boxes: vec![Aabb::EMPTY; n],
+            moved: vec![0; n],
+            pairs: vec![(0, 0); m],
+            next: vec![(0, 0); m],
+        }
+    }
+
+    fn view(&mut self) -> TrackerStorage<'_> {
+        TrackerStorage {
+            nodes: &mut self.nodes,
+            slots: &mut self.slots,
+            boxes: &mut self.boxes,
+            moved: &mut self.moved,
+            pairs: &mut self.pairs,
+            next: &mut self.next,
+        }
+    }
+}
+
+/// The pairs brute force finds among the objects present (`present[i]`
+/// holds object `i`'s box).
+fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
+    let boxes: Vec<Aabb> = present
+        .iter()
+        .map(|b| b.unwrap_or(Aabb::new(Vec3::splat(1e6), Vec3::splat(1e6))))
+        .collect();
+    let mut want = Vec::new();
+    brute_force::self_pairs(&boxes, |i, j| {
+        if present[i as usize].is_some() && present[j as usize].is_some() {
+            want.push((i, j));
+        }
+    });
+    want
+}
+
+fn run(ops: &[Op], margin: f32, pair_room: usize) -> Result<(), TestCaseError> {
+    let n = 40;
+    let mut storage = Storage::new(n, pair_room);
+    let config = DynamicConfig {
+        margin,
+        ..DynamicConfig::default()
+    };
+    let mut world = PairTracker::new(storage.view(), config).unwrap();
+    let mut present: Vec<Option<Aabb>> = vec![None; n];
+    let mut before: BTreeSet<(u32, u32)> = BTreeSet::new();
+    for op in ops {
+        match *op {
+            Op::Insert(i, o, s) => {
+                let b = Aabb::new(o, o + s);
+                let r = world.insert(i, &b);
+                prop_assert_eq!(r.is_ok(), present[i as usize].is_none(), "{:?}", r);
+                present[i as usize].get_or_insert(b);
+            }
+            Op::Remove(i) => {
+                let r = world.remove(i);
+                prop_assert_eq!(r.is_ok(), present[i as usize].is_some());
+                present[i as usize] = None;
+            }
+            Op::Nudge(i, d) | Op::Jump(i, d) => {
+                let Some(b) = present[i as usize] else {
+                    prop_assert!(world.set_bounds(i, &Aabb::EMPTY).is_err());
+                    continue;
+                };
+                let moved = match op {
+                    Op::Nudge(..) => Aabb::new(b.min + d, b.max + d),
+                    _ => Aabb::new(d, d + b.extent()),
+                };
+                world.set_bounds(i, &moved).unwrap();
+                present[i as usize] = Some(moved);
+            }
+            Op::Step => {
+                let want = reference(&present);
+                let mut events = Vec::new();
+                match world.step(|e| events.push(e)) {
+                    Err(Error::ResultCapacity { found, capacity }) => {
+                        // Too many pairs for the buffers: refused, and the
+                        // old list stays.
+                        prop_assert!(found > capacity && want.len() > capacity);
+                        prop_assert_eq!(
+                            world.pairs().iter().copied().collect::<BTreeSet<_>>(),
+                            before.clone()
+                        );
+                        prop_assert!(events.is_empty());
+                        continue;
+                    }
+                    Err(e) => return Err(TestCaseError::fail(format!("step: {e}"))),
+                    Ok(report) => {
+                        prop_assert_eq!(world.pairs(), &want[..], "pairs after a step");
+                        let now: BTreeSet<_> = want.iter().copied().collect();
+                        let mut ends: Vec<_> = before
+                            .difference(&now)
+                            .map(|&(a, b)| PairEvent::End(a, b))
+                            .collect();
+                        let begins: Vec<_> = now
+                            .difference(&before)
+                            .map(|&(a, b)| PairEvent::Begin(a, b))
+                            .collect();
+                        ends.extend(begins);
+                        prop_assert_eq!(&events, &ends, "events are the difference, ends first");
+                        prop_assert_eq!(
+                            (report.begun + report.ended, report.pairs),
+                            (events.len(), want.len())
+                        );
+                        before = now;
+                    }
+                }
+                world
+                    .tree()
+                    .validate()
+                    .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+                prop_assert_eq!(world.len(), present.iter().flatten().count());
+                // The tree answers other queries in place, with the boxes.
+                let region = Aabb::new(Vec3::splat(-2.0), Vec3::splat(2.0));
+                let mut got = Vec::new();
+                world
+                    .tree()
+                    .overlapping(world.boxes(), &region, |i| got.push(i))
+                    .unwrap();
+                got.sort_unstable();
+                let want_region: Vec<u32> = (0..n as u32)
+                    .filter(|&i| present[i as usize].is_some_and(|b| b.overlaps(&region)))
+                    .collect();
+                prop_assert_eq!(got, want_region);
+                prop_assert!(world.tree().depth() <= bvhkit::MAX_DEPTH);
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(proptest_config(64))]
+
+    #[test]
+    fn steps_report_exactly_the_brute_force_pairs_and_their_changes(
+        ops in prop::collection::vec(op(), 1..160),
+        margin in prop_oneof![Just(0.0f32), 0.0f32..0.5],
+        tight in any::<bool>(),
+    ) {
+        // Room for every pair of 40 objects, or for only a few (then some
+        // steps are refused and must change nothing).
+        run(&ops, margin, if tight { 12 } else { 40 * 39 / 2 })?;
+    }
+}
+
+#[test]
+fn bad_ids_boxes_and_storage_are_errors() {
+    let mut s = Storage::new(4, 6);
+    let mut world = PairTracker::new(s.view(), DynamicConfig::default()).unwrap();
+    let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+    assert!(world.insert(4, &unit).is_err()); // past the slots
+    world.insert(1, &unit).unwrap();
+    assert!(world.insert(1, &unit).is_err()); // already present
+    let nan = Aabb::new(Vec3::splat(f32::NAN), Vec3::ONE);
+    assert!(matches!(
+        world.insert(2, &nan),
+        Err(Error::NonFiniteCoordinate { .. })
+    ));
+    assert!(matches!(
+        world.set_bounds(1, &nan),
+        Err(Error::NonFiniteCoordinate { .. })
+    ));
+    assert!(world.set_bounds(3, &unit).is_err()); // not present
+    assert!(world.remove(0).is_err());
+    // Nothing was lost: object 1 is still there, with its box.
+    assert_eq!(world.len(), 1);
+    assert_eq!(world.boxes()[1], unit);
+    world.insert(2, &unit).unwrap();
+    let mut events = Vec::new();
+    world.step(|e| events.push(e)).unwrap();
+    assert_eq!(events, [PairEvent::Begin(1, 2)]);
+    // Storage too small for the slots.
+    let mut s = Storage::new(4, 6);
+    s.moved.truncate(3);
+    assert!(PairTracker::new(s.view(), DynamicConfig::default()).is_err());
+    let mut s = Storage::new(4, 6);
+    s.next.truncate(2);
+    assert!(PairTracker::new(s.view(), DynamicConfig::default()).is_err());
+    // An empty world steps to nothing.
+    let mut s = Storage::new(1, 0);
+    let mut empty = PairTracker::new(s.view(), DynamicConfig::default()).unwrap();
+    assert_eq!(empty.step(|_| panic!("no events")).unwrap().pairs, 0);
+}
