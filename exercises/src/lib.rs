@@ -615,6 +615,28 @@ pub trait Exercises {
     /// exact. Touching counts; a zero-area triangle is the segment or point
     /// it is; a box may be flat.
     fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool;
+
+    /// Exercise 42: self-collision, one tree against itself. Push `(i, j)`
+    /// with `i < j` into `out` for every two primitives of `tree` whose
+    /// boxes overlap (touching counts), each pair exactly once, in any
+    /// order. Two primitives in the same leaf are paired inside that leaf:
+    /// test every pair of its primitives. Two in different leaves meet at
+    /// the lowest internal node above both, one beneath each child: for
+    /// every internal node, walk its two children against each other with
+    /// the informed traversal of exercise 5 (test the two nodes' boxes and
+    /// skip the pair with everything beneath it when they miss; at two
+    /// leaves test the primitives' own boxes; otherwise open the node
+    /// [`descend_a`](Self::descend_a) picks), reporting each pair with the
+    /// smaller index first. Nothing else: a node's own box is never tested
+    /// against itself (a box always overlaps itself). Never walk the tree
+    /// against itself with exercise 5, which finds each pair twice, `(i, j)`
+    /// and `(j, i)`, and every primitive with itself. The grader moves an
+    /// internal node's box away from its contents: a pair with one
+    /// primitive beneath that node must not be reported (the walk that
+    /// meets the node prunes it), a pair with both beneath it still must
+    /// (the node's children are walked against each other without testing
+    /// its own box).
+    fn self_pairs(&self, tree: &Bvh<Aabb>, prims: &[Aabb], out: &mut Vec<(u32, u32)>);
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

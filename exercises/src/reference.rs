@@ -4,7 +4,7 @@ use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::layout::{Wide, WideNode};
-use bvhkit::query::{Ray, RayTarget};
+use bvhkit::query::{Ray, RayTarget, SelfPairs};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
     Open, PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
@@ -977,6 +977,19 @@ impl Exercises for Reference {
 
     fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool {
         bvhkit::narrow::box_triangle_intersect(b, t)
+    }
+
+    fn self_pairs(&self, tree: &Bvh<Aabb>, prims: &[Aabb], out: &mut Vec<(u32, u32)>) {
+        // Boxes have no neighbours, so the default neighbour filter would
+        // skip nothing; `keep_adjacent` says so. Each inner node's children
+        // are walked with exercise 5's traversal.
+        let query = SelfPairs::new(tree, prims)
+            .keep_adjacent()
+            .traversal(PairTraversal::Recursive(Descent::Larger))
+            .for_each(|i, j| out.push((i, j)));
+        if let Err(e) = query {
+            panic!("the reference self query failed: {e}");
+        }
     }
 }
 

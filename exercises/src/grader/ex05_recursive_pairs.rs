@@ -210,7 +210,7 @@ pub(crate) fn dense_cases() -> Vec<(Tree, Tree, String)> {
 }
 
 /// Primitives at or beneath node `i`.
-fn beneath(t: &Tree, i: u32) -> Vec<u32> {
+pub(crate) fn beneath(t: &Tree, i: u32) -> Vec<u32> {
     let n = &t.nodes[i as usize];
     match n.children() {
         None => t.indices[n.first as usize..(n.first + n.count) as usize].to_vec(),
@@ -219,7 +219,7 @@ fn beneath(t: &Tree, i: u32) -> Vec<u32> {
 }
 
 /// Moves the box of node `i` (not its contents) by `by`.
-fn move_node(t: &mut Tree, i: u32, by: Vec3) {
+pub(crate) fn move_node(t: &mut Tree, i: u32, by: Vec3) {
     let bv = &mut t.nodes[i as usize].bv;
     *bv = Aabb::new(bv.min + by, bv.max + by);
 }

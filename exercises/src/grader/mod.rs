@@ -47,6 +47,7 @@ mod ex38_clip_polygon;
 mod ex39_relocate_pieces;
 mod ex40_leaf_collapse;
 mod ex41_box_triangle;
+mod ex42_self_pairs;
 #[cfg(test)]
 mod wrong;
 
@@ -75,7 +76,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 41] = [
+pub const EXERCISES: [(u32, &str); 42] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -128,6 +129,10 @@ pub const EXERCISES: [(u32, &str); 41] = [
     (
         41,
         "box against triangle, exactly: separating axes by signs",
+    ),
+    (
+        42,
+        "self-collision: one tree against itself, each pair once",
     ),
 ];
 
@@ -190,6 +195,7 @@ pub fn checks() -> Vec<Check> {
         ex39_relocate_pieces::checks(),
         ex40_leaf_collapse::checks(),
         ex41_box_triangle::checks(),
+        ex42_self_pairs::checks(),
     ]
     .concat()
 }
@@ -403,7 +409,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 464/464 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 475/475 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -45,6 +45,7 @@ use super::ex38_clip_polygon;
 use super::ex39_relocate_pieces;
 use super::ex40_leaf_collapse;
 use super::ex41_box_triangle;
+use super::ex42_self_pairs;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -103,6 +104,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (39, ex39_relocate_pieces::wrong::COUNT),
         (40, ex40_leaf_collapse::wrong::COUNT),
         (41, ex41_box_triangle::wrong::COUNT),
+        (42, ex42_self_pairs::wrong::COUNT),
     ]
 }
 
@@ -337,5 +339,8 @@ impl Exercises for Wrong {
     }
     fn box_triangle(&self, b: &Aabb, t: &Triangle) -> bool {
         ex41_box_triangle::wrong::box_triangle(self.k(41), b, t)
+    }
+    fn self_pairs(&self, tree: &Bvh<Aabb>, prims: &[Aabb], out: &mut Vec<(u32, u32)>) {
+        ex42_self_pairs::wrong::self_pairs(self.k(42), tree, prims, out)
     }
 }
