@@ -12,7 +12,9 @@
 //!
 //! All storage comes from the caller ([`BroadPhase`]); nothing allocates.
 
+#[cfg(feature = "insertion")]
 mod tracker;
+#[cfg(feature = "insertion")]
 pub use tracker::{PairEvent, PairTracker, Slot, StepReport, TrackerStorage};
 
 use crate::builders::TopDown;

@@ -377,80 +377,91 @@ where
 
 /// Checks the self query of `tree` over `prims` against brute force, for
 /// every traversal: all overlapping pairs, neighbours skipped (the
-/// default), an id rule, and exact; each pair `i < j` exactly once, in all
-/// three result modes.
+/// default), an id rule, and exact; each pair `i < j` exactly once, in two
+/// result modes. One filter and one answer type switched at run time, so
+/// the query is compiled once per tree type (this runs on every layout).
 pub fn check_self<H: Hierarchy>(
     tree: &H,
     prims: &[Triangle],
     cfg: &dyn std::fmt::Debug,
 ) -> Result<(), TestCaseError> {
-    use bvhkit::query::{Adjacent, SelfPairs};
+    use bvhkit::query::{Adjacent, SelfFilter, SelfPairs};
     use bvhkit::Intersects;
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    enum Mode {
+        All,
+        NoNeighbours,
+        IdRule,
+        Exact,
+    }
+    let rule = |i: u32, j: u32| (i + 2 * j).is_multiple_of(3);
+    struct Filter(Mode);
+    impl SelfFilter<Triangle> for Filter {
+        fn skip(&mut self, i: u32, j: u32, p: &Triangle, q: &Triangle) -> bool {
+            match self.0 {
+                Mode::All => false,
+                Mode::IdRule => (i + 2 * j).is_multiple_of(3),
+                Mode::NoNeighbours | Mode::Exact => p.adjacent(q),
+            }
+        }
+    }
     let mut all = Vec::new();
     brute_force::self_pairs(prims, |i, j| all.push((i, j)));
     let apart = |&(i, j): &(u32, u32)| !prims[i as usize].adjacent(&prims[j as usize]);
-    let rule = |i: u32, j: u32| (i + 2 * j).is_multiple_of(3);
     let not_adjacent: Vec<_> = all.iter().copied().filter(apart).collect();
-    let not_ruled: Vec<_> = all.iter().copied().filter(|&(i, j)| !rule(i, j)).collect();
     let touching: Vec<_> = not_adjacent
         .iter()
         .copied()
         .filter(|&(i, j)| prims[i as usize].intersects(&prims[j as usize]))
         .collect();
-    fn sorted(
-        run: impl FnOnce(&mut dyn FnMut(u32, u32)) -> Result<usize, bvhkit::Error>,
-    ) -> Result<Vec<(u32, u32)>, TestCaseError> {
-        let mut got = Vec::new();
-        let n =
-            run(&mut |i, j| got.push((i, j))).map_err(|e| TestCaseError::fail(format!("{e}")))?;
-        prop_assert_eq!(n, got.len());
-        prop_assert!(got.iter().all(|&(i, j)| i < j), "a pair not ordered i < j");
-        got.sort_unstable();
-        Ok(got)
-    }
+    let wants = [
+        (Mode::All, all.clone()),
+        (Mode::NoNeighbours, not_adjacent),
+        (
+            Mode::IdRule,
+            all.iter().copied().filter(|&(i, j)| !rule(i, j)).collect(),
+        ),
+        (Mode::Exact, touching),
+    ];
+    let name = <H::Bv as BoundingVolume>::NAME;
     for traversal in all_traversals() {
-        let q = || SelfPairs::new(tree, prims).traversal(traversal);
-        let name = <H::Bv as BoundingVolume>::NAME;
-        let got = sorted(|f| q().keep_adjacent().for_each(f))?;
-        prop_assert_eq!(&got, &all, "self, all, {} {:?} {:?}", name, traversal, cfg);
-        let mut counts = Counts::default();
-        let got = sorted(|f| q().counted(&mut counts).for_each(f))?;
-        prop_assert_eq!(
-            &got,
-            &not_adjacent,
-            "self, neighbours skipped, {} {:?} {:?}",
-            name,
-            traversal,
-            cfg
-        );
-        prop_assert!(counts.prim_tests >= got.len() as u64);
-        let got = sorted(|f| q().skip(rule).for_each(f))?;
-        prop_assert_eq!(
-            &got,
-            &not_ruled,
-            "self, id rule, {} {:?} {:?}",
-            name,
-            traversal,
-            cfg
-        );
-        let got = sorted(|f| q().exact().for_each(f))?;
-        prop_assert_eq!(
-            &got,
-            &touching,
-            "self, exact, {} {:?} {:?}",
-            name,
-            traversal,
-            cfg
-        );
-        prop_assert_eq!(q().exact().count().unwrap(), touching.len());
-        let first = q().exact().first().unwrap();
-        prop_assert_eq!(first.is_some(), !touching.is_empty());
-        if let Some(p) = first {
-            prop_assert!(
-                touching.binary_search(&p).is_ok(),
-                "first pair {:?} is not an answer",
-                p
+        for (mode, want) in &wants {
+            let exact = *mode == Mode::Exact;
+            let answer = move |p: &Triangle, q: &Triangle| !exact || p.intersects(q);
+            let mut counts = Counts::default();
+            let q = || {
+                SelfPairs::new(tree, prims)
+                    .traversal(traversal)
+                    .filter(Filter(*mode))
+                    .answer(answer)
+            };
+            let mut got = Vec::new();
+            let n = q()
+                .counted(&mut counts)
+                .for_each(|i, j| got.push((i, j)))
+                .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+            prop_assert_eq!(n, got.len());
+            prop_assert!(got.iter().all(|&(i, j)| i < j), "a pair not ordered i < j");
+            got.sort_unstable();
+            prop_assert_eq!(
+                &got,
+                want,
+                "self, {:?}, {} {:?} {:?}",
+                mode,
+                name,
+                traversal,
+                cfg
             );
+            prop_assert!(counts.prim_tests >= n as u64);
+            let first = q().counted(&mut counts).first().unwrap();
+            prop_assert_eq!(first.is_some(), !want.is_empty());
+            if let Some(p) = first {
+                prop_assert!(
+                    want.binary_search(&p).is_ok(),
+                    "first pair {:?} is not an answer",
+                    p
+                );
+            }
         }
     }
     Ok(())
