@@ -75,8 +75,9 @@ pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{
     brute_force, overlapping_pairs, Answer, Bounds, Collector, CostModel, Counts, Decision,
-    DepthSwitch, Descent, DescentRule, Exact, Frame, Hit, Nearest, Open, Order, PairTraversal,
-    Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget, Region, Same, Tally,
+    DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit, Nearest, Open, Order,
+    PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget, Region, Same,
+    Tally,
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};

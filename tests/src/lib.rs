@@ -2,6 +2,7 @@
 //! configuration, and the brute-force comparison run on every tree.
 
 use bvhkit::glam::Vec3;
+use bvhkit::query::{Distance, PairDistance};
 use bvhkit::{
     brute_force, overlapping_pairs, Aabb, Answer, AxisChoice, BoundingVolume, Bounds, Bvh, Counts,
     DepthSwitch, Descent, Frame, Hierarchy, Node, OnFailure, PairTraversal, Pairs, Partition,
@@ -504,4 +505,58 @@ pub fn build_bottom_up<B: BoundingVolume, P: Primitive>(
     // A collapse leaves fewer nodes than the buffer holds.
     nodes.truncate(used);
     Ok((nodes, idx, depth))
+}
+
+/// Checks both distance queries of tree `a` over `pa` against tree `b` over
+/// `pb` against brute force: the closest pair's distance (the pair itself
+/// may differ among equals, so its recomputed points must match), and the
+/// pairs within 0, the least distance, and `radius`. Returns how many
+/// answers were compared.
+pub fn check_distance<A: Hierarchy, H: Hierarchy, P: PairDistance<Q>, Q>(
+    a: &A,
+    pa: &[P],
+    b: &H,
+    pb: &[Q],
+    radius: f64,
+    cfg: &dyn std::fmt::Debug,
+) -> Result<usize, TestCaseError> {
+    let want = brute_force::closest_pair(pa, pb);
+    let got = Distance::new(a, pa, b, pb)
+        .closest()
+        .map_err(|e| TestCaseError::fail(format!("{cfg:?}: {e}")))?;
+    match (want, got) {
+        (None, None) => {}
+        (Some(w), Some(g)) => {
+            prop_assert_eq!(
+                g.points.distance_squared,
+                w.points.distance_squared,
+                "{:?}: closest {:?} against brute force {:?}",
+                cfg,
+                g,
+                w
+            );
+            prop_assert_eq!(
+                pa[g.a as usize].closest_points(&pb[g.b as usize]),
+                g.points,
+                "{:?}",
+                cfg
+            );
+        }
+        (w, g) => prop_assert!(false, "{:?}: closest {:?}, brute force {:?}", cfg, g, w),
+    }
+    let mut compared = 1;
+    let least = want.map_or(0.0, |w| w.distance());
+    for d in [0.0, least, radius] {
+        let mut expect = Vec::new();
+        brute_force::pairs_within(pa, pb, d, |i, j| expect.push((i, j)));
+        let mut found = Vec::new();
+        let n = Distance::new(a, pa, b, pb)
+            .within(d, |i, j| found.push((i, j)))
+            .map_err(|e| TestCaseError::fail(format!("{cfg:?}: {e}")))?;
+        prop_assert_eq!(n, found.len());
+        found.sort_unstable();
+        prop_assert_eq!(&found, &expect, "{:?}: pairs within {}", cfg, d);
+        compared += 1;
+    }
+    Ok(compared)
 }

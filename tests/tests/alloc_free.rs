@@ -285,6 +285,9 @@ fn every_other_query<B: BoundingVolume>(
         .nearest(a, Vec3::new(3.1, 2.2, 9.0), ())
         .unwrap()
         .is_some() as usize;
+    let distance = bvhkit::Distance::new(ta, a, tb, b);
+    total += distance.closest().unwrap().is_some() as usize;
+    total += distance.within(0.5, |_, _| {}).unwrap();
     let objects = [
         Object {
             tree: ta,

@@ -159,3 +159,55 @@ where
     }
     found
 }
+
+/// The closest pair `(i, j)` of `a[i]` and `b[j]`, by
+/// [`PairDistance`](super::PairDistance): the least squared distance, ties
+/// going to the lowest `(i, j)`. `None` when either set is empty. The
+/// reference for [`Distance::closest`](super::Distance::closest), which
+/// finds the same distance (perhaps at another pair of equal distance).
+///
+/// ```
+/// use bvhkit::brute_force;
+/// use glam::Vec3;
+/// let a = [Vec3::ZERO, Vec3::new(5.0, 0.0, 0.0)];
+/// let b = [Vec3::new(9.0, 0.0, 0.0), Vec3::new(5.0, 2.0, 0.0)];
+/// let c = brute_force::closest_pair(&a, &b).unwrap();
+/// assert_eq!((c.a, c.b, c.distance()), (1, 1, 2.0));
+/// ```
+pub fn closest_pair<P: super::PairDistance<Q>, Q>(a: &[P], b: &[Q]) -> Option<super::Closest> {
+    let mut best: Option<super::Closest> = None;
+    for (i, p) in a.iter().enumerate() {
+        for (j, q) in b.iter().enumerate() {
+            let points = p.closest_points(q);
+            if best.is_none_or(|c| points.distance_squared < c.points.distance_squared) {
+                best = Some(super::Closest {
+                    a: i as u32,
+                    b: j as u32,
+                    points,
+                });
+            }
+        }
+    }
+    best
+}
+
+/// Every pair `(i, j)` with `a[i]` and `b[j]` at most `distance` apart (by
+/// [`PairDistance`](super::PairDistance)); returns the count. The reference
+/// for [`Distance::within`](super::Distance::within).
+pub fn pairs_within<P: super::PairDistance<Q>, Q>(
+    a: &[P],
+    b: &[Q],
+    distance: f64,
+    mut f: impl FnMut(u32, u32),
+) -> usize {
+    let mut found = 0;
+    for (i, p) in a.iter().enumerate() {
+        for (j, q) in b.iter().enumerate() {
+            if p.closest_points(q).distance_squared <= distance * distance {
+                f(i as u32, j as u32);
+                found += 1;
+            }
+        }
+    }
+    found
+}

@@ -13,6 +13,7 @@
 pub mod brute_force;
 mod collect;
 mod descent;
+mod distance;
 mod heap;
 mod nearest;
 mod pair;
@@ -24,6 +25,7 @@ mod tally;
 
 pub use collect::Collector;
 pub use descent::{Decision, DepthSwitch, Descent, DescentRule, Open};
+pub use distance::{Closest, ClosestPoints, Distance, PairDistance};
 pub use heap::BEST_FIRST_QUEUE;
 pub use nearest::{Nearest, PointDistance};
 pub use pair::{

@@ -362,6 +362,10 @@ pub(crate) fn run_boxes(
         if result.is_ok() {
             result = check_self(view, a, &name);
         }
+        // Distances, each layout against B's canonical tree.
+        if result.is_ok() {
+            result = check_distance(view, a, &tb, b, probe.1 as f64 * 3.0, &name).map(|_| ());
+        }
     });
     result?;
     // Wide against quantized: two 4-wide trees of different record types.
