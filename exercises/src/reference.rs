@@ -4,7 +4,7 @@ use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::layout::{Wide, WideNode};
-use bvhkit::query::{Ray, RayTarget, SelfPairs};
+use bvhkit::query::{PairDistance, Ray, RayTarget, SelfPairs};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
     Open, PairTraversal, Pairs, Partition, Primitive, Sphere, Stop, Triangle,
@@ -990,6 +990,63 @@ impl Exercises for Reference {
         if let Err(e) = query {
             panic!("the reference self query failed: {e}");
         }
+    }
+
+    fn closest_pair(
+        &self,
+        a: &Bvh<Aabb>,
+        b: &Bvh<Aabb>,
+        distance: &mut dyn FnMut(u32, u32) -> f64,
+    ) -> Option<(u32, u32, f64)> {
+        // The walk of `Distance::closest` (core/src/query/distance.rs) with
+        // exercise 4's descent rule and the exact box bound: the library
+        // lowers its bound by a margin against the rounding of triangle
+        // distances, which box distances do not need.
+        let (na, nb) = (a.nodes(), b.nodes());
+        if na.is_empty() || nb.is_empty() {
+            return None;
+        }
+        let bound = |i: u32, j: u32| {
+            na[i as usize]
+                .bv
+                .closest_points(&nb[j as usize].bv)
+                .distance_squared
+        };
+        let mut best: Option<(u32, u32, f64)> = None;
+        let mut stack = vec![(0u32, 0u32)];
+        while let Some((i, j)) = stack.pop() {
+            if best.is_some_and(|(_, _, d)| bound(i, j) >= d) {
+                continue; // nothing beneath can be closer than the best
+            }
+            let (x, y) = (&na[i as usize], &nb[j as usize]);
+            let kids = if self.descend_a(x, y) {
+                x.children().map(|(l, r)| [(l, j), (r, j)])
+            } else {
+                y.children().map(|(l, r)| [(i, l), (i, r)])
+            };
+            match kids {
+                None => {
+                    for &p in a.leaf_primitives(x) {
+                        for &q in b.leaf_primitives(y) {
+                            let d = distance(p, q);
+                            if best.is_none_or(|(_, _, e)| d < e) {
+                                best = Some((p, q, d));
+                            }
+                        }
+                    }
+                }
+                Some([first, second]) => {
+                    // The nearer child pair on top of the stack: pushed last.
+                    let (near, far) = if bound(second.0, second.1) < bound(first.0, first.1) {
+                        (second, first)
+                    } else {
+                        (first, second)
+                    };
+                    stack.extend([far, near]);
+                }
+            }
+        }
+        best
     }
 }
 

@@ -559,4 +559,22 @@ impl Exercises for Student {
         let _ = (tree, prims, out);
         todo!("exercise 42")
     }
+
+    fn closest_pair(
+        &self,
+        a: &Bvh<Aabb>,
+        b: &Bvh<Aabb>,
+        distance: &mut dyn FnMut(u32, u32) -> f64,
+    ) -> Option<(u32, u32, f64)> {
+        // Hint: a stack of node pairs, starting with the roots `(0, 0)`,
+        // and `best: Option<(u32, u32, f64)>`. Pop a pair and compare the
+        // squared distance of its two boxes (`use bvhkit::query::PairDistance;`
+        // then `x.bv.closest_points(&y.bv).distance_squared`) with the best
+        // *now*. At two leaves, `distance(i, j)` for every `i` of one and `j`
+        // of the other (`Bvh::leaf_primitives`). Otherwise, of the node
+        // `descend_a` opens, compute both child pairs' bounds and push the
+        // farther first, so that the nearer is popped next.
+        let _ = (a, b, distance);
+        todo!("exercise 43")
+    }
 }

@@ -48,6 +48,7 @@ mod ex39_relocate_pieces;
 mod ex40_leaf_collapse;
 mod ex41_box_triangle;
 mod ex42_self_pairs;
+mod ex43_closest_pair;
 #[cfg(test)]
 mod wrong;
 
@@ -76,7 +77,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 42] = [
+pub const EXERCISES: [(u32, &str); 43] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -134,6 +135,7 @@ pub const EXERCISES: [(u32, &str); 42] = [
         42,
         "self-collision: one tree against itself, each pair once",
     ),
+    (43, "the closest pair of two trees: branch and bound"),
 ];
 
 /// A score for one exercise.
@@ -196,6 +198,7 @@ pub fn checks() -> Vec<Check> {
         ex40_leaf_collapse::checks(),
         ex41_box_triangle::checks(),
         ex42_self_pairs::checks(),
+        ex43_closest_pair::checks(),
     ]
     .concat()
 }
@@ -409,7 +412,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 475/475 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 486/486 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

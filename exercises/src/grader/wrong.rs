@@ -46,6 +46,7 @@ use super::ex39_relocate_pieces;
 use super::ex40_leaf_collapse;
 use super::ex41_box_triangle;
 use super::ex42_self_pairs;
+use super::ex43_closest_pair;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -105,6 +106,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (40, ex40_leaf_collapse::wrong::COUNT),
         (41, ex41_box_triangle::wrong::COUNT),
         (42, ex42_self_pairs::wrong::COUNT),
+        (43, ex43_closest_pair::wrong::COUNT),
     ]
 }
 
@@ -342,5 +344,13 @@ impl Exercises for Wrong {
     }
     fn self_pairs(&self, tree: &Bvh<Aabb>, prims: &[Aabb], out: &mut Vec<(u32, u32)>) {
         ex42_self_pairs::wrong::self_pairs(self.k(42), tree, prims, out)
+    }
+    fn closest_pair(
+        &self,
+        a: &Bvh<Aabb>,
+        b: &Bvh<Aabb>,
+        distance: &mut dyn FnMut(u32, u32) -> f64,
+    ) -> Option<(u32, u32, f64)> {
+        ex43_closest_pair::wrong::closest_pair(self.k(43), a, b, distance)
     }
 }
