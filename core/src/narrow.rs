@@ -14,6 +14,14 @@
 //! | box–box | interval comparisons | yes |
 //! | box–triangle | 13 separating axes, each decided by exact orientation signs | yes |
 //! | sphere–sphere | squared distance in `f64` | to `f64` rounding |
+//!
+//! [`triangle_contact`] goes one step further: *where* two triangles meet
+//! (the segment of two crossing triangles, the polygon two coplanar ones
+//! share), decided exactly and placed in `f64`.
+
+mod contact;
+
+pub use contact::{triangle_contact, Contact};
 
 use crate::bv::Aabb;
 #[cfg(feature = "sphere")]

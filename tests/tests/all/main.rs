@@ -10,6 +10,7 @@ mod advisor;
 mod bad_input;
 mod bottom_up;
 mod broad_phase;
+mod contact;
 mod distance;
 mod empty;
 mod equivalence;
