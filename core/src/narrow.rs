@@ -17,11 +17,15 @@
 //!
 //! [`triangle_contact`] goes one step further: *where* two triangles meet
 //! (the segment of two crossing triangles, the polygon two coplanar ones
-//! share), decided exactly and placed in `f64`.
+//! share), decided exactly and placed in `f64`. For solids (boxes, spheres),
+//! [`Penetrate`] gives the contact a solver pushes apart: a point, a normal
+//! and a depth.
 
 mod contact;
+mod penetration;
 
 pub use contact::{triangle_contact, Contact};
+pub use penetration::{Penetrate, Penetration};
 
 use crate::bv::Aabb;
 #[cfg(feature = "sphere")]

@@ -153,3 +153,124 @@ fn a_triangle_inside_another_is_the_contact() {
     );
     assert_eq!(triangle_contact(&big, &up), None);
 }
+
+mod solids {
+    use bvhkit::glam::{DVec3, Vec3};
+    use bvhkit::narrow::{Penetrate, Penetration};
+    use bvhkit::{Aabb, Sphere};
+    use bvhkit_tests::*;
+    use proptest::prelude::*;
+
+    #[derive(Clone, Copy, Debug)]
+    enum Shape {
+        Box(Aabb),
+        Ball(Sphere),
+    }
+
+    impl Shape {
+        /// Whether `self` overlaps `other` moved by `t` (touching counts),
+        /// in `f64`, written apart from the method under test.
+        fn overlaps_moved(&self, other: &Shape, t: DVec3) -> bool {
+            let box_ball = |b: &Aabb, c: DVec3, r: f64| {
+                let q = c.clamp(b.min.as_dvec3(), b.max.as_dvec3());
+                (c - q).length() <= r
+            };
+            match (self, other) {
+                (Shape::Box(a), Shape::Box(b)) => (0..3).all(|k| {
+                    a.max.as_dvec3()[k] >= b.min.as_dvec3()[k] + t[k]
+                        && b.max.as_dvec3()[k] + t[k] >= a.min.as_dvec3()[k]
+                }),
+                (Shape::Ball(a), Shape::Ball(b)) => {
+                    (b.center.as_dvec3() + t - a.center.as_dvec3()).length()
+                        <= a.radius as f64 + b.radius as f64
+                }
+                (Shape::Box(a), Shape::Ball(b)) => {
+                    box_ball(a, b.center.as_dvec3() + t, b.radius as f64)
+                }
+                (Shape::Ball(a), Shape::Box(b)) => {
+                    box_ball(b, a.center.as_dvec3() - t, a.radius as f64)
+                }
+            }
+        }
+
+        /// How far `p` lies outside the solid (0 inside).
+        fn outside(&self, p: DVec3) -> f64 {
+            match self {
+                Shape::Box(b) => (p - p.clamp(b.min.as_dvec3(), b.max.as_dvec3())).length(),
+                Shape::Ball(s) => ((p - s.center.as_dvec3()).length() - s.radius as f64).max(0.0),
+            }
+        }
+    }
+
+    fn penetration(a: &Shape, b: &Shape) -> Option<Penetration> {
+        match (a, b) {
+            (Shape::Box(a), Shape::Box(b)) => a.penetration(b),
+            (Shape::Ball(a), Shape::Ball(b)) => a.penetration(b),
+            (Shape::Box(a), Shape::Ball(b)) => a.penetration(b),
+            (Shape::Ball(a), Shape::Box(b)) => a.penetration(b),
+        }
+    }
+
+    fn shape() -> impl Strategy<Value = Shape> {
+        let v = |r: f32| (-r..r, -r..r, -r..r).prop_map(|(x, y, z)| Vec3::new(x, y, z));
+        prop_oneof![
+            (v(2.0), (0.0f32..2.0, 0.0f32..2.0, 0.0f32..2.0))
+                .prop_map(|(o, e)| Shape::Box(Aabb::new(o, o + Vec3::from(e)))),
+            (v(2.0), 0.0f32..1.5).prop_map(|(c, r)| Shape::Ball(Sphere {
+                center: c,
+                radius: r
+            })),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(proptest_config(300))]
+
+        /// A contact exactly when the solids overlap; moving the second by
+        /// a hair more than the depth along the normal separates them; no
+        /// move shorter than the depth, in any of 26 directions, does.
+        #[test]
+        fn the_depth_is_the_least_move_that_separates(pair in prop_oneof![
+            3 => (shape(), shape()),
+            // A ball centred inside a box, either way round: rarer above.
+            1 => (shape(), (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0), 0.0f32..1.5, any::<bool>()).prop_map(|(s, f, r, swap)| {
+                let b = match s {
+                    Shape::Box(b) => b,
+                    Shape::Ball(s) => Aabb::new(s.center, s.center + Vec3::splat(1.0 + s.radius)),
+                };
+                let ball = Shape::Ball(Sphere { center: b.min + (b.max - b.min) * Vec3::from(f), radius: r });
+                if swap { (ball, Shape::Box(b)) } else { (Shape::Box(b), ball) }
+            }),
+        ]) {
+            let (a, b) = pair;
+            let p = penetration(&a, &b);
+            prop_assert_eq!(p.is_some(), a.overlaps_moved(&b, DVec3::ZERO), "{:?}", p);
+            let Some(p) = p else { return Ok(()) };
+            prop_assert!((p.normal.length() - 1.0).abs() < 1e-12 && p.depth >= 0.0);
+            let eps = 1e-6;
+            prop_assert!(!a.overlaps_moved(&b, p.normal * (p.depth + eps)), "{:?} does not separate", p);
+            // The point is halfway between the surfaces: at most half the
+            // depth outside either solid.
+            prop_assert!(a.outside(p.point).max(b.outside(p.point)) <= p.depth / 2.0 + eps, "{:?}", p);
+            if p.depth > eps {
+                for x in -1..=1 {
+                    for y in -1..=1 {
+                        for z in -1..=1 {
+                            let u = DVec3::new(x as f64, y as f64, z as f64);
+                            if u == DVec3::ZERO {
+                                continue;
+                            }
+                            let u = u.normalize();
+                            prop_assert!(
+                                a.overlaps_moved(&b, u * (p.depth - eps)),
+                                "{:?}: a shorter move along {} separates",
+                                p,
+                                u
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
