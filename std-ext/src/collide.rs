@@ -4,11 +4,17 @@
 //! The default scene is the rock of the tour and a moved copy of the *same*
 //! tree: B is not rebuilt, it is queried in A's frame through a rigid motion
 //! (each moved node volume counts as an update, `Nu`).
+//!
+//! With [`CollideOptions::distance`], the run also asks
+//! [`bvhkit::query::Distance`] for the closest pair of triangles. That query
+//! has no frame: on the built-in scene B's triangles are moved by the motion
+//! and a tree is built over them for it (timed apart, `distance_build_ms`).
 
 use crate::builders::Builder;
 use crate::tour::reference_pairs;
 use crate::{median_time, scene};
-use bvhkit::glam::{Quat, Vec3};
+use bvhkit::glam::{DVec3, Quat, Vec3};
+use bvhkit::query::Distance;
 use bvhkit::{
     Aabb, BoundingVolume, Counts, Descent, Dop14, Dop18, Dop26, Frame, Intersects, Obb,
     PairTraversal, Pairs, Place, Primitive, Rigid, Same, Sphere, Triangle,
@@ -54,6 +60,33 @@ pub struct CollideOptions {
     pub runs: usize,
     /// Compare with brute force.
     pub verify: bool,
+    /// Also measure the distance between the objects (the closest pair of
+    /// triangles); with `verify`, against [`bvhkit::brute_force::closest_pair`].
+    pub distance: bool,
+}
+
+/// The most triangle pairs (`|A| * |B|`) that `verify` with `distance`
+/// measures by brute force (every pair: about 0.2 s per million in a
+/// release build on the 2-core test machine, 5 s for the rock at 4
+/// subdivisions, 5 120 triangles each): larger scenes are refused with a
+/// message rather than left running for minutes (the default rock pair
+/// would take about 20 minutes). The contacts' --verify needs no limit:
+/// it only tests box pairs.
+pub const VERIFY_DISTANCE_MAX_PAIRS: usize = 30_000_000;
+
+/// Refuses a brute-force distance check over more than
+/// [`VERIFY_DISTANCE_MAX_PAIRS`] triangle pairs.
+pub fn check_verify_distance(triangles_a: usize, triangles_b: usize) -> Result<(), String> {
+    let pairs = triangles_a.saturating_mul(triangles_b);
+    if pairs > VERIFY_DISTANCE_MAX_PAIRS {
+        return Err(format!(
+            "--verify with --distance measures every triangle pair by brute force: \
+             {triangles_a} x {triangles_b} = {pairs} pairs is over the limit of \
+             {VERIFY_DISTANCE_MAX_PAIRS} (use smaller meshes, --subdivisions 4 or less, \
+             or leave out --verify)"
+        ));
+    }
+    Ok(())
 }
 
 impl Default for CollideOptions {
@@ -66,6 +99,7 @@ impl Default for CollideOptions {
             mode: Mode::All,
             runs: 5,
             verify: false,
+            distance: false,
         }
     }
 }
@@ -151,6 +185,37 @@ pub struct CollideReport {
     pub reference_pairs: Option<usize>,
     /// Whether the answer equals brute force, when verified.
     pub verified: Option<bool>,
+    /// The closest pair, when asked for (`--distance`); its fields join the
+    /// report's (absent otherwise).
+    #[serde(flatten)]
+    pub closest: Option<DistanceReport>,
+}
+
+/// What the distance query measured (`collide --distance`).
+#[derive(Clone, Debug, Serialize)]
+pub struct DistanceReport {
+    /// Distance between the objects: `0` when they touch; `None` when one
+    /// has no triangles.
+    pub distance: Option<f64>,
+    /// The point of A nearest to B (`[x, y, z]`, A's frame).
+    pub closest_a: Option<[f64; 3]>,
+    /// The point of B nearest to A (`[x, y, z]`, A's frame).
+    pub closest_b: Option<[f64; 3]>,
+    /// The closest triangles: index in A, index in B.
+    pub closest_pair: Option<[u32; 2]>,
+    /// `Nv` of the distance query: box pairs bounded.
+    pub distance_bv_tests: u64,
+    /// `Np` of the distance query: triangle pairs measured.
+    pub distance_prim_tests: u64,
+    /// Median time to move B's triangles by the motion and build a tree over
+    /// them (the built-in scene only: the distance query has no frame).
+    pub distance_build_ms: Option<f64>,
+    /// Median time of the distance query.
+    pub distance_time_ms: f64,
+    /// The distance by brute force (every triangle pair), when verified.
+    pub reference_distance: Option<f64>,
+    /// Whether the distance equals brute force's, when verified.
+    pub distance_verified: Option<bool>,
 }
 
 /// The traversal named `name` with rule `descent`.
@@ -201,9 +266,13 @@ fn run_with<B: BoundingVolume>(
             placement,
         } => {
             let mesh = scene::rock(*subdivisions, 1);
+            if opts.distance && opts.verify {
+                check_verify_distance(mesh.len(), mesh.len())?;
+            }
             let (build, tree) = median_time(opts.runs, || builder.build::<B>(&mesh));
             let tree = tree.map_err(err)?;
             let t = tree.view();
+            let motion = placement.after(&default_motion());
             let placed = if placement.is_identity() {
                 ""
             } else {
@@ -212,24 +281,44 @@ fn run_with<B: BoundingVolume>(
             let name = format!(
                 "rock ({subdivisions} subdivisions) and a moved copy of the same tree{placed}"
             );
-            measure(
+            let mut report = measure(
                 &name,
                 &t,
                 &mesh,
                 &t,
                 &mesh,
-                placement.after(&default_motion()),
+                motion,
                 trav,
                 opts,
                 build_ms(build),
-            )
+            )?;
+            if opts.distance {
+                // No frame in the distance query: B moved, and a tree over it.
+                let (rebuild, placed) = median_time(opts.runs, || {
+                    let placed: Vec<Triangle> = mesh.iter().map(|t| motion.place(t)).collect();
+                    builder.build::<B>(&placed).map(|tree| (placed, tree))
+                });
+                let (placed, tb) = placed.map_err(err)?;
+                let mut d = measure_distance(&t, &mesh, &tb.view(), &placed, opts)?;
+                d.distance_build_ms = Some(build_ms(rebuild));
+                report.closest = Some(d);
+            }
+            Ok(report)
         }
         Input::Meshes { name, a, b } => {
+            if opts.distance && opts.verify {
+                check_verify_distance(a.len(), b.len())?;
+            }
             let start = Instant::now();
             let ta = builder.build::<B>(a).map_err(err)?;
             let tb = builder.build::<B>(b).map_err(err)?;
             let build = start.elapsed().as_secs_f64() * 1e3;
-            measure(name, &ta.view(), a, &tb.view(), b, Same, trav, opts, build)
+            let (ta, tb) = (ta.view(), tb.view());
+            let mut report = measure(name, &ta, a, &tb, b, Same, trav, opts, build)?;
+            if opts.distance {
+                report.closest = Some(measure_distance(&ta, a, &tb, b, opts)?);
+            }
+            Ok(report)
         }
     }
 }
@@ -341,6 +430,54 @@ where
         time_ms: t.as_secs_f64() * 1e3,
         reference_pairs,
         verified,
+        closest: None,
+    })
+}
+
+/// The closest pair of triangles of `a` (tree `ta`) and `b` (tree `tb`, in
+/// A's frame): one counted run, the median of `opts.runs` timed runs and,
+/// with `opts.verify`, brute force over every pair.
+fn measure_distance<B: BoundingVolume>(
+    ta: &bvhkit::Bvh<B>,
+    a: &[Triangle],
+    tb: &bvhkit::Bvh<B>,
+    b: &[Triangle],
+    opts: &CollideOptions,
+) -> Result<DistanceReport, String> {
+    let err = |e: bvhkit::Error| e.to_string();
+    let mut counts = Counts::default();
+    let closest = Distance::new(ta, a, tb, b)
+        .counted(&mut counts)
+        .closest()
+        .map_err(err)?;
+    let (time, r) = median_time(opts.runs, || Distance::new(ta, a, tb, b).closest());
+    r.map_err(err)?;
+    let (reference_distance, distance_verified) = if opts.verify {
+        check_verify_distance(a.len(), b.len())?;
+        let reference = bvhkit::brute_force::closest_pair(a, b);
+        // The same f64 arithmetic on the same pairs: the least squared
+        // distance is equal to the bit, whichever pair attains it.
+        let ok = match (closest, reference) {
+            (None, None) => true,
+            (Some(c), Some(r)) => c.points.distance_squared == r.points.distance_squared,
+            _ => false,
+        };
+        (reference.map(|r| r.distance()), Some(ok))
+    } else {
+        (None, None)
+    };
+    let xyz = |p: DVec3| [p.x, p.y, p.z];
+    Ok(DistanceReport {
+        distance: closest.map(|c| c.distance()),
+        closest_a: closest.map(|c| xyz(c.points.on_a)),
+        closest_b: closest.map(|c| xyz(c.points.on_b)),
+        closest_pair: closest.map(|c| [c.a, c.b]),
+        distance_bv_tests: counts.bv_tests,
+        distance_prim_tests: counts.prim_tests,
+        distance_build_ms: None,
+        distance_time_ms: time.as_secs_f64() * 1e3,
+        reference_distance,
+        distance_verified,
     })
 }
 
@@ -390,6 +527,11 @@ pub fn run_self(
     mesh: &[Triangle],
     opts: &CollideOptions,
 ) -> Result<SelfReport, String> {
+    if opts.distance {
+        return Err(
+            "--distance measures between two objects and cannot be used with --self".into(),
+        );
+    }
     match opts.volume.as_str() {
         "aabb" => self_with::<Aabb>(name, mesh, opts),
         "sphere" => self_with::<Sphere>(name, mesh, opts),
@@ -595,7 +737,70 @@ pub fn render(r: &CollideReport) -> String {
             if ok { "match" } else { "MISMATCH" }
         );
     }
+    if let Some(d) = &r.closest {
+        s += &render_distance(d);
+    }
     s
+}
+
+/// The distance lines of the text report.
+fn render_distance(d: &DistanceReport) -> String {
+    let mut s = String::from("\n");
+    match (d.distance, d.closest_pair, d.closest_a, d.closest_b) {
+        (Some(dist), Some([i, j]), Some(pa), Some(pb)) => {
+            let touch = if dist == 0.0 { ", touching" } else { "" };
+            s += &format!(
+                "distance             {:>12} (triangles {i} x {j}{touch})\n\
+                 closest on A         {:>12}\n\
+                 closest on B         {:>12}\n",
+                significant(dist),
+                point(pa),
+                point(pb),
+            );
+        }
+        _ => s += "distance                     none (an object has no triangles)\n",
+    }
+    s += &format!(
+        "distance Nv          {:>12}\n\
+         distance Np          {:>12}\n",
+        d.distance_bv_tests, d.distance_prim_tests
+    );
+    if let Some(ms) = d.distance_build_ms {
+        s += &format!(
+            "B moved and rebuilt  {ms:>12.3} ms (median; the distance query has no frame)\n"
+        );
+    }
+    s += &format!(
+        "distance time        {:>12.3} ms (median)\n",
+        d.distance_time_ms
+    );
+    if let Some(ok) = d.distance_verified {
+        s += &format!(
+            "brute force          {:>12} distance: {}\n",
+            d.reference_distance.map_or("none".into(), significant),
+            if ok { "match" } else { "MISMATCH" }
+        );
+    }
+    s
+}
+
+/// `x` to six significant digits (plain notation), `0` as `0`.
+fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.digits$}")
+}
+
+/// `(x, y, z)`, six significant digits each.
+fn point(p: [f64; 3]) -> String {
+    format!(
+        "({}, {}, {})",
+        significant(p[0]),
+        significant(p[1]),
+        significant(p[2])
+    )
 }
 
 #[cfg(test)]
@@ -673,6 +878,116 @@ mod tests {
         .unwrap();
         assert_eq!((r.verified, r.intersecting_pairs), (Some(true), 0));
         assert!(r.adjacent_pairs > rock.len());
+    }
+
+    /// A flat square of `n` x `n` cells (two triangles each), side 2, at
+    /// height `z`, its corner at (`x`, 0).
+    fn sheet(n: usize, x: f32, z: f32) -> Vec<Triangle> {
+        let s = 2.0 / n as f32;
+        let at = |i: usize, j: usize| Vec3::new(x + i as f32 * s, j as f32 * s, z);
+        (0..n * n)
+            .flat_map(|k| {
+                let (i, j) = (k % n, k / n);
+                [
+                    Triangle::new(at(i, j), at(i + 1, j), at(i + 1, j + 1)),
+                    Triangle::new(at(i, j), at(i + 1, j + 1), at(i, j + 1)),
+                ]
+            })
+            .collect()
+    }
+
+    fn with_distance() -> CollideOptions {
+        CollideOptions {
+            runs: 1,
+            verify: true,
+            distance: true,
+            ..CollideOptions::default()
+        }
+    }
+
+    #[test]
+    fn distance_of_the_built_in_rocks_touching_and_apart() {
+        let r = run(&Input::default_scene(3), &with_distance()).unwrap();
+        let d = r.closest.as_ref().unwrap();
+        assert_eq!((r.verified, d.distance_verified), (Some(true), Some(true)));
+        // The rocks overlap: distance 0, the same answer as the contacts.
+        assert!(r.intersecting_pairs > 0);
+        assert_eq!(d.distance, Some(0.0));
+        let [pa, pb] = [d.closest_a.unwrap(), d.closest_b.unwrap()].map(DVec3::from);
+        assert!((pa - pb).length() < 1e-9, "{pa} {pb}");
+        assert!(d.distance_build_ms.is_some() && d.distance_bv_tests > 0);
+        assert!(render(&r).contains("touching"), "{}", render(&r));
+
+        // Moved 5 further along x: apart (the rock's radius is about 1).
+        let placement = Rigid::new(Quat::IDENTITY, Vec3::new(5.0, 0.0, 0.0)).unwrap();
+        let input = Input::Default {
+            subdivisions: 3,
+            placement,
+        };
+        let r = run(&input, &with_distance()).unwrap();
+        let d = r.closest.as_ref().unwrap();
+        assert_eq!((r.verified, d.distance_verified), (Some(true), Some(true)));
+        assert_eq!(r.intersecting_pairs, 0);
+        let dist = d.distance.unwrap();
+        assert!(dist > 2.0 && dist < 6.0, "{dist}");
+        assert_eq!(d.reference_distance, Some(dist));
+        // The points are on the reported triangles, `dist` apart.
+        let [pa, pb] = [d.closest_a.unwrap(), d.closest_b.unwrap()].map(DVec3::from);
+        assert!(((pa - pb).length() - dist).abs() < 1e-12);
+    }
+
+    #[test]
+    fn distance_of_two_parallel_sheets_is_their_gap() {
+        // B above A by 0.25, shifted by half a cell: every point of A's
+        // middle is 0.25 below B.
+        let (a, b) = (sheet(6, 0.0, 0.0), sheet(6, 1.0, 0.25));
+        let input = Input::Meshes {
+            name: "sheets".into(),
+            a,
+            b,
+        };
+        let r = run(&input, &with_distance()).unwrap();
+        let d = r.closest.as_ref().unwrap();
+        assert_eq!(d.distance, Some(0.25));
+        assert_eq!(d.distance_verified, Some(true));
+        assert_eq!(d.closest_a.unwrap()[2], 0.0);
+        assert_eq!(d.closest_b.unwrap()[2], 0.25);
+        assert!(d.distance_build_ms.is_none());
+        let text = render(&r);
+        assert!(
+            text.contains("0.250000") && text.contains("match"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn distance_with_an_empty_object_is_none() {
+        for (a, b) in [
+            (Vec::new(), sheet(2, 0.0, 0.0)),
+            (sheet(2, 0.0, 0.0), Vec::new()),
+        ] {
+            let input = Input::Meshes {
+                name: "empty".into(),
+                a,
+                b,
+            };
+            let r = run(&input, &with_distance()).unwrap();
+            let d = r.closest.as_ref().unwrap();
+            assert_eq!((d.distance, d.closest_pair), (None, None));
+            assert_eq!(d.distance_verified, Some(true));
+            assert!(render(&r).contains("none (an object has no triangles)"));
+        }
+    }
+
+    #[test]
+    fn distance_is_refused_with_self_and_verify_on_large_scenes() {
+        let err = run_self("rock", &scene::rock(1, 1), &with_distance()).unwrap_err();
+        assert!(err.contains("--self"), "{err}");
+        assert!(check_verify_distance(5_120, 5_120).is_ok());
+        let err = check_verify_distance(81_920, 81_920).unwrap_err();
+        assert!(err.contains("limit") && err.contains("--verify"), "{err}");
+        // Refused before anything is built; fine without --verify.
+        assert!(run(&Input::default_scene(6), &with_distance()).is_err());
     }
 
     #[test]
