@@ -667,6 +667,25 @@ pub trait Exercises {
         b: &Bvh<Aabb>,
         distance: &mut dyn FnMut(u32, u32) -> f64,
     ) -> Option<(u32, u32, f64)>;
+
+    /// Exercise 44: where two triangles cross. `t1` and `t2` are never in
+    /// one plane and never of zero area (the grader asks about no other
+    /// kind). Return the segment the two closed triangles share, its two
+    /// ends in either order (equal when they touch at one point), or `None`
+    /// when they do not touch. The segment lies on the line where the two
+    /// planes meet, whose direction is `n1 x n2` (the normals
+    /// `(b - a) x (c - a)` of each triangle's corners `a, b, c`, in `f64`).
+    /// Each triangle cuts the other's plane in a segment of that line (or a
+    /// point, or not at all): its corners on that plane, and for each edge
+    /// whose two ends lie strictly on opposite sides, the point where it
+    /// crosses. The answer is the overlap of the two cuts along the line:
+    /// from the later of their starts to the earlier of their ends, ordered
+    /// by `p.dot(n1 x n2)`. Which side of a plane a corner is on may be
+    /// decided with `bvhkit::narrow::orient3` (exact) or with the signed
+    /// height `n.dot(p - a)` in `f64`, whose sign is right on every case the
+    /// grader gives. Ends are compared within 1e-9 times the largest
+    /// coordinate of the six corners (at least 1).
+    fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -4,6 +4,7 @@ use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::layout::{Wide, WideNode};
+use bvhkit::narrow::{triangle_contact, Contact};
 use bvhkit::query::{PairDistance, Ray, RayTarget, SelfPairs};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
@@ -1047,6 +1048,17 @@ impl Exercises for Reference {
             }
         }
         best
+    }
+
+    fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]> {
+        // The library's contact; out of one plane it is always a segment.
+        match triangle_contact(t1, t2) {
+            None => None,
+            Some(Contact::Segment(ends)) => Some(ends),
+            Some(Contact::Area { .. }) => {
+                panic!("exercise 44 is about triangles in two planes; these lie in one")
+            }
+        }
     }
 }
 

@@ -577,4 +577,22 @@ impl Exercises for Student {
         let _ = (a, b, distance);
         todo!("exercise 43")
     }
+
+    fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]> {
+        // Hint: write one helper, `cut(t, other, dir) -> Option<[DVec3; 2]>`,
+        // and call it both ways round with the same `dir = n1.cross(n2)`.
+        // In it, the side of each corner `p` of `t`: with `other`'s corners
+        // `a, b, c`, `bvhkit::narrow::orient3(a, b, c, p)` (exact), or the
+        // sign of `n.dot(p - a)` in `f64`, n = (b - a) x (c - a). Collect each
+        // corner whose side is 0, and for each edge i -> j (j = (i + 1) % 3)
+        // whose sides are opposite (1 and -1) the point p + (q - p) * h_i /
+        // (h_i - h_j), the heights h in `f64`. No point: `None`. Of the
+        // points, return the one with the smallest `dot(dir)` and the one
+        // with the largest.
+        // Then the overlap: the start with the larger `dot(dir)`, the end
+        // with the smaller, and `None` only when the start comes strictly
+        // after the end (equal means they touch at one point).
+        let _ = (t1, t2);
+        todo!("exercise 44")
+    }
 }

@@ -49,6 +49,7 @@ mod ex40_leaf_collapse;
 mod ex41_box_triangle;
 mod ex42_self_pairs;
 mod ex43_closest_pair;
+mod ex44_crossing_segment;
 #[cfg(test)]
 mod wrong;
 
@@ -77,7 +78,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 43] = [
+pub const EXERCISES: [(u32, &str); 44] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -136,6 +137,7 @@ pub const EXERCISES: [(u32, &str); 43] = [
         "self-collision: one tree against itself, each pair once",
     ),
     (43, "the closest pair of two trees: branch and bound"),
+    (44, "where two triangles cross: the shared segment"),
 ];
 
 /// A score for one exercise.
@@ -199,6 +201,7 @@ pub fn checks() -> Vec<Check> {
         ex41_box_triangle::checks(),
         ex42_self_pairs::checks(),
         ex43_closest_pair::checks(),
+        ex44_crossing_segment::checks(),
     ]
     .concat()
 }
@@ -412,7 +415,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 486/486 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 496/496 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -47,6 +47,7 @@ use super::ex40_leaf_collapse;
 use super::ex41_box_triangle;
 use super::ex42_self_pairs;
 use super::ex43_closest_pair;
+use super::ex44_crossing_segment;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -107,6 +108,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (41, ex41_box_triangle::wrong::COUNT),
         (42, ex42_self_pairs::wrong::COUNT),
         (43, ex43_closest_pair::wrong::COUNT),
+        (44, ex44_crossing_segment::wrong::COUNT),
     ]
 }
 
@@ -352,5 +354,8 @@ impl Exercises for Wrong {
         distance: &mut dyn FnMut(u32, u32) -> f64,
     ) -> Option<(u32, u32, f64)> {
         ex43_closest_pair::wrong::closest_pair(self.k(43), a, b, distance)
+    }
+    fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]> {
+        ex44_crossing_segment::wrong::crossing_segment(self.k(44), t1, t2)
     }
 }
