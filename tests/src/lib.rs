@@ -512,7 +512,7 @@ pub fn build_bottom_up<B: BoundingVolume, P: Primitive>(
 /// may differ among equals, so its recomputed points must match), and the
 /// pairs within 0, the least distance, and `radius`. Returns how many
 /// answers were compared.
-pub fn check_distance<A: Hierarchy, H: Hierarchy, P: PairDistance<Q>, Q>(
+pub fn check_distance<A: Hierarchy, H: Hierarchy, P: PairDistance<Q>, Q: Clone>(
     a: &A,
     pa: &[P],
     b: &H,

@@ -13,10 +13,11 @@
 
 use super::nearest::closest_on_triangle;
 use super::stack::Stack;
-use super::Tally;
+use super::{Frame, Place, Same, Tally};
 use crate::bv::{Aabb, BoundingVolume};
 use crate::narrow::triangles_intersect;
 use crate::primitive::Triangle;
+use crate::transform::Rigid;
 use crate::tree::hierarchy::{check_query, DFS_STACK};
 use crate::tree::{Content, Hierarchy};
 use crate::Error;
@@ -332,47 +333,95 @@ const DISTANCE_STACK: usize = 2 * DFS_STACK;
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct Distance<'q, A, H, P, Q, T = ()> {
+pub struct Distance<'q, A, H, P, Q, F = Same, T = ()> {
     a: &'q A,
     pa: &'q [P],
     b: &'q H,
     pb: &'q [Q],
+    frame: F,
     tally: T,
 }
 
 impl<'q, A: Hierarchy, H: Hierarchy, P, Q> Distance<'q, A, H, P, Q> {
-    /// Tree A over `pa` against tree B over `pb`.
+    /// Tree A over `pa` against tree B over `pb`, both in one frame.
     pub fn new(a: &'q A, pa: &'q [P], b: &'q H, pb: &'q [Q]) -> Self {
         Distance {
             a,
             pa,
             b,
             pb,
+            frame: Same,
             tally: (),
         }
     }
 }
 
-impl<'q, A, H, P, Q, T> Distance<'q, A, H, P, Q, T> {
-    /// Counts `Nv` (box pairs bounded) and `Np` (primitive pairs measured).
-    pub fn counted<T2: Tally>(self, tally: T2) -> Distance<'q, A, H, P, Q, T2> {
+impl<'q, A, H, P, Q, F, T> Distance<'q, A, H, P, Q, F, T> {
+    /// Counts `Nv` (box pairs bounded), `Np` (primitive pairs measured) and,
+    /// in a moved frame, `Nu` (B's volumes moved).
+    pub fn counted<T2: Tally>(self, tally: T2) -> Distance<'q, A, H, P, Q, F, T2> {
         Distance {
             a: self.a,
             pa: self.pa,
             b: self.b,
             pb: self.pb,
+            frame: self.frame,
             tally,
+        }
+    }
+
+    /// Measures B as if moved by `motion` (B's frame to A's), without
+    /// rebuilding it: B's volumes are moved as they are reached (each
+    /// containing the moved boxes of everything beneath it), and B's
+    /// primitives are placed before they are measured. The answer equals
+    /// brute force over B's primitives placed by the same motion.
+    pub fn in_frame(self, motion: Rigid) -> Distance<'q, A, H, P, Q, Rigid, T> {
+        self.in_frame_of(motion)
+    }
+
+    /// Places B by any [`Frame`] ([`Same`] or a [`Rigid`] motion).
+    pub fn in_frame_of<F2>(self, frame: F2) -> Distance<'q, A, H, P, Q, F2, T> {
+        Distance {
+            a: self.a,
+            pa: self.pa,
+            b: self.b,
+            pb: self.pb,
+            frame,
+            tally: self.tally,
         }
     }
 }
 
-impl<A, H, P, Q, T> Distance<'_, A, H, P, Q, T>
+impl<A, H, P, Q, F, T> Distance<'_, A, H, P, Q, F, T>
 where
     A: Hierarchy,
     H: Hierarchy,
     P: PairDistance<Q>,
+    F: Frame + Place<Q>,
     T: Tally,
 {
+    /// Primitive `i` of A against primitive `j` of B placed in A's frame.
+    #[inline]
+    fn measure(&self, i: u32, j: u32) -> ClosestPoints {
+        let (p, q) = (&self.pa[i as usize], &self.pb[j as usize]);
+        if F::MOVES {
+            p.closest_points(&self.frame.place(q))
+        } else {
+            p.closest_points(q)
+        }
+    }
+
+    /// B's node `n` as a box in A's frame.
+    fn b_box(&mut self, n: u32) -> Aabb {
+        let bv = self.b.bv(n);
+        if F::MOVES {
+            self.tally.updates(1);
+            self.frame.bv_with_boxes(&bv).aabb()
+        } else {
+            bv.aabb()
+        }
+    }
+
     /// The closest pair of primitives (`None` when a tree is empty). The
     /// distance is the minimum over all pairs; which pair is reported when
     /// several share it depends on the walk. The search stops at the first
@@ -389,7 +438,7 @@ where
             a.depth().max(b.depth()),
         );
         while let Some((na, nb)) = stack.pop() {
-            let (ba, bb) = (a.bv(na).aabb(), b.bv(nb).aabb());
+            let (ba, bb) = (a.bv(na).aabb(), self.b_box(nb));
             self.tally.bv_tests(1);
             let limit = best.map_or(f64::INFINITY, |c| c.points.distance_squared);
             if lower_bound(&ba, &bb) >= limit {
@@ -400,7 +449,7 @@ where
                     self.tally.prim_tests((la.len() * lb.len()) as u32);
                     for &i in la {
                         for &j in lb {
-                            let points = self.pa[i as usize].closest_points(&self.pb[j as usize]);
+                            let points = self.measure(i, j);
                             if best
                                 .is_none_or(|c| points.distance_squared < c.points.distance_squared)
                             {
@@ -429,7 +478,7 @@ where
                             unreachable!()
                         };
                         for &c in kids.as_slice() {
-                            next[len] = (lower_bound(&ba, &b.bv(c).aabb()), na, c);
+                            next[len] = (lower_bound(&ba, &self.b_box(c)), na, c);
                             len += 1;
                         }
                     }
@@ -468,7 +517,7 @@ where
             a.depth().max(b.depth()),
         );
         while let Some((na, nb)) = stack.pop() {
-            let (ba, bb) = (a.bv(na).aabb(), b.bv(nb).aabb());
+            let (ba, bb) = (a.bv(na).aabb(), self.b_box(nb));
             self.tally.bv_tests(1);
             if lower_bound(&ba, &bb) > radius {
                 continue;
@@ -478,7 +527,7 @@ where
                     self.tally.prim_tests((la.len() * lb.len()) as u32);
                     for &i in la {
                         for &j in lb {
-                            let d = self.pa[i as usize].closest_points(&self.pb[j as usize]);
+                            let d = self.measure(i, j);
                             if d.distance_squared <= radius {
                                 f(i, j);
                                 found += 1;

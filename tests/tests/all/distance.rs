@@ -258,3 +258,75 @@ proptest! {
         prop_assert!((c.distance_squared - back).abs() <= 1e-12 * c.distance_squared.max(1.0));
     }
 }
+
+/// B measured through a rigid motion (no rebuild) against brute force over
+/// B's primitives placed by the same motion.
+fn check_moved<A: bvhkit::Hierarchy, H: bvhkit::Hierarchy>(
+    ta: &A,
+    a: &[Triangle],
+    tb: &H,
+    b: &[Triangle],
+    motion: bvhkit::Rigid,
+    radius: f64,
+) -> Result<(), TestCaseError> {
+    use bvhkit::Place;
+    let placed: Vec<Triangle> = b.iter().map(|t| motion.place(t)).collect();
+    let want = bvhkit::brute_force::closest_pair(a, &placed);
+    let got = Distance::new(ta, a, tb, b)
+        .in_frame(motion)
+        .closest()
+        .unwrap();
+    prop_assert_eq!(
+        got.map(|c| c.points.distance_squared),
+        want.map(|c| c.points.distance_squared)
+    );
+    if let Some(g) = got {
+        prop_assert_eq!(
+            a[g.a as usize].closest_points(&placed[g.b as usize]),
+            g.points
+        );
+    }
+    for d in [0.0, radius] {
+        let mut expect = Vec::new();
+        bvhkit::brute_force::pairs_within(a, &placed, d, |i, j| expect.push((i, j)));
+        let mut found = Vec::new();
+        Distance::new(ta, a, tb, b)
+            .in_frame(motion)
+            .within(d, |i, j| found.push((i, j)))
+            .unwrap();
+        found.sort_unstable();
+        prop_assert_eq!(found, expect, "within {}", d);
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(proptest_config(24))]
+
+    #[test]
+    fn b_through_a_rigid_motion_equals_brute_force_over_placed_b(
+        cfg in any_top_down(),
+        a in scene(40),
+        b in scene(40),
+        angle in -3.0f32..3.0,
+        axis in (-1.0f32..1.0, -1.0f32..1.0, 0.1f32..1.0),
+        shift in (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
+        f in 0.0f32..1.0,
+    ) {
+        let rotation = bvhkit::glam::Quat::from_axis_angle(Vec3::from(axis).normalize(), angle);
+        // The shift in the scene's own scale (scenes sit in frames up to 1e30).
+        let size = radius(&a, 1.0 / 0.3) as f32;
+        let Ok(motion) = bvhkit::Rigid::new(rotation, Vec3::from(shift) * size.min(1e30) * 0.1) else {
+            return Ok(());
+        };
+        let r = radius(&a, f);
+        macro_rules! each_volume {
+            ($($bv:ty),*) => {$(
+                let (na, ia, _) = build::<$bv, _>(&cfg, &a).unwrap();
+                let (nb, ib, _) = build::<$bv, _>(&cfg, &b).unwrap();
+                check_moved(&open(&na, &ia, &a), &a, &open(&nb, &ib, &b), &b, motion, r)?;
+            )*};
+        }
+        each_volume!(Aabb, Sphere, Obb);
+    }
+}
