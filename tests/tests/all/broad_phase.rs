@@ -69,7 +69,7 @@ impl Storage {
 fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
     let boxes: Vec<Aabb> = present
         .iter()
-        .map(|b| b.unwrap_or(Aabb::new(Vec3::splat(1e6), Vec3::splat(1e6))))
+        .map(|b| b.unwrap_or(Aabb::new(Vec3::splat(1e30), Vec3::splat(1e30))))
         .collect();
     let mut want = Vec::new();
     brute_force::self_pairs(&boxes, |i, j| {
@@ -80,7 +80,9 @@ fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
     want
 }
 
-fn run(ops: &[Op], margin: f32, pair_room: usize) -> Result<(), TestCaseError> {
+/// Runs `ops` with every position offset by `origin` (far from the origin,
+/// `f32` spacing reaches 1/16 at 1e6: nudges round, boxes touch exactly).
+fn run(ops: &[Op], margin: f32, pair_room: usize, origin: Vec3) -> Result<(), TestCaseError> {
     let n = 40;
     let mut storage = Storage::new(n, pair_room);
     let config = DynamicConfig {
@@ -93,6 +95,7 @@ fn run(ops: &[Op], margin: f32, pair_room: usize) -> Result<(), TestCaseError> {
     for op in ops {
         match *op {
             Op::Insert(i, o, s) => {
+                let o = o + origin;
                 let b = Aabb::new(o, o + s);
                 let r = world.insert(i, &b);
                 prop_assert_eq!(r.is_ok(), present[i as usize].is_none(), "{:?}", r);
@@ -110,7 +113,7 @@ fn run(ops: &[Op], margin: f32, pair_room: usize) -> Result<(), TestCaseError> {
                 };
                 let moved = match op {
                     Op::Nudge(..) => Aabb::new(b.min + d, b.max + d),
-                    _ => Aabb::new(d, d + b.extent()),
+                    _ => Aabb::new(d + origin, d + origin + b.extent()),
                 };
                 world.set_bounds(i, &moved).unwrap();
                 present[i as usize] = Some(moved);
@@ -157,7 +160,7 @@ fn run(ops: &[Op], margin: f32, pair_room: usize) -> Result<(), TestCaseError> {
                     .map_err(|e| TestCaseError::fail(format!("{e}")))?;
                 prop_assert_eq!(world.len(), present.iter().flatten().count());
                 // The tree answers other queries in place, with the boxes.
-                let region = Aabb::new(Vec3::splat(-2.0), Vec3::splat(2.0));
+                let region = Aabb::new(origin - 2.0, origin + 2.0);
                 let mut got = Vec::new();
                 world
                     .tree()
@@ -183,10 +186,15 @@ proptest! {
         ops in prop::collection::vec(op(), 1..160),
         margin in prop_oneof![Just(0.0f32), 0.0f32..0.5],
         tight in any::<bool>(),
+        origin in prop_oneof![
+            3 => Just(Vec3::ZERO),
+            1 => Just(Vec3::new(1e4, -3e4, 2e4)),
+            1 => Just(Vec3::splat(1e6)),
+        ],
     ) {
         // Room for every pair of 40 objects, or for only a few (then some
         // steps are refused and must change nothing).
-        run(&ops, margin, if tight { 12 } else { 40 * 39 / 2 })?;
+        run(&ops, margin, if tight { 12 } else { 40 * 39 / 2 }, origin)?;
     }
 }
 
