@@ -507,28 +507,38 @@ pub struct SelfReport {
     pub verified: Option<bool>,
 }
 
-/// `collide --self`: the mesh's tree against itself. Two triangles share a
-/// vertex when they have a corner at the same position (the loaders keep
-/// positions only; for a welded mesh that is the same as sharing a vertex
-/// index, and two corners at one point touch whatever their indices).
+/// `collide --self`: the mesh's tree against itself. Two triangles are
+/// neighbours, skipped, when they share a vertex *index*: `corners[i]` holds
+/// triangle `i`'s three (from [`mesh::load_indexed`](crate::mesh::load_indexed),
+/// or [`mesh::weld`](crate::mesh::weld) for a mesh without a vertex list).
+/// Two corners at one position with different indices (a seam of split
+/// vertices) are not neighbours: such a pair touches and is reported.
 pub fn run_self(
     name: &str,
     mesh: &[Triangle],
+    corners: &[[u32; 3]],
     opts: &CollideOptions,
 ) -> Result<SelfReport, String> {
+    if corners.len() != mesh.len() {
+        return Err(format!(
+            "{} triangles but {} corner triples",
+            mesh.len(),
+            corners.len()
+        ));
+    }
     if opts.distance {
         return Err(
             "--distance measures between two objects and cannot be used with --self".into(),
         );
     }
     match opts.volume.as_str() {
-        "aabb" => self_with::<Aabb>(name, mesh, opts),
-        "sphere" => self_with::<Sphere>(name, mesh, opts),
-        "obb" => self_with::<Obb>(name, mesh, opts),
-        "obb-dito" => self_with::<bvhkit::ObbDito>(name, mesh, opts),
-        "14-dop" => self_with::<Dop14>(name, mesh, opts),
-        "18-dop" => self_with::<Dop18>(name, mesh, opts),
-        "26-dop" => self_with::<Dop26>(name, mesh, opts),
+        "aabb" => self_with::<Aabb>(name, mesh, corners, opts),
+        "sphere" => self_with::<Sphere>(name, mesh, corners, opts),
+        "obb" => self_with::<Obb>(name, mesh, corners, opts),
+        "obb-dito" => self_with::<bvhkit::ObbDito>(name, mesh, corners, opts),
+        "14-dop" => self_with::<Dop14>(name, mesh, corners, opts),
+        "18-dop" => self_with::<Dop18>(name, mesh, corners, opts),
+        "26-dop" => self_with::<Dop26>(name, mesh, corners, opts),
         other => Err(format!("unknown volume '{other}' (one of {VOLUMES:?})")),
     }
 }
@@ -536,9 +546,14 @@ pub fn run_self(
 fn self_with<B: BoundingVolume>(
     name: &str,
     mesh: &[Triangle],
+    corners: &[[u32; 3]],
     opts: &CollideOptions,
 ) -> Result<SelfReport, String> {
-    use bvhkit::query::{Adjacent, SelfPairs};
+    use bvhkit::query::SelfPairs;
+    let share = |i: u32, j: u32| {
+        let (a, b) = (corners[i as usize], corners[j as usize]);
+        a.iter().any(|x| b.contains(x))
+    };
     let builder = Builder::by_name(&opts.builder).ok_or_else(|| {
         format!(
             "unknown builder '{}' (one of {:?})",
@@ -551,7 +566,7 @@ fn self_with<B: BoundingVolume>(
     let (build, tree) = median_time(opts.runs, || builder.build::<B>(mesh));
     let tree = tree.map_err(err)?;
     let t = tree.view();
-    let q = || SelfPairs::new(&t, mesh).traversal(trav);
+    let q = || SelfPairs::new(&t, mesh).traversal(trav).skip(share);
     // One counted run: every overlapping pair, sorted into neighbours,
     // candidates and intersections.
     let mut counts = Counts::default();
@@ -561,7 +576,7 @@ fn self_with<B: BoundingVolume>(
         .counted(&mut counts)
         .for_each(|i, j| {
             let (p, r) = (&mesh[i as usize], &mesh[j as usize]);
-            if p.adjacent(r) {
+            if share(i, j) {
                 adjacent += 1;
             } else {
                 candidates += 1;
@@ -580,7 +595,7 @@ fn self_with<B: BoundingVolume>(
     let (reference_pairs, verified) = if opts.verify {
         let sweep: Vec<(u32, u32)> = sweep_self_pairs(mesh)
             .into_iter()
-            .filter(|&(i, j)| !mesh[i as usize].adjacent(&mesh[j as usize]))
+            .filter(|&(i, j)| !share(i, j))
             .collect();
         let touching: Vec<(u32, u32)> = sweep
             .iter()
@@ -842,7 +857,7 @@ mod tests {
                 verify: true,
                 ..CollideOptions::default()
             };
-            let r = run_self("strip", &mesh, &opts).unwrap();
+            let r = run_self("strip", &mesh, &crate::mesh::weld(&mesh), &opts).unwrap();
             assert_eq!(r.verified, Some(true), "{traversal}");
             assert!(r.adjacent_pairs >= 39, "{r:?}");
             assert!(r.intersecting_pairs > 0 && r.candidate_pairs >= r.intersecting_pairs);
@@ -853,6 +868,7 @@ mod tests {
         let r = run_self(
             "rock",
             &rock,
+            &crate::mesh::weld(&rock),
             &CollideOptions {
                 runs: 1,
                 verify: true,
@@ -862,6 +878,35 @@ mod tests {
         .unwrap();
         assert_eq!((r.verified, r.intersecting_pairs), (Some(true), 0));
         assert!(r.adjacent_pairs > rock.len());
+    }
+
+    #[test]
+    fn neighbours_are_triangles_sharing_a_vertex_index_not_a_position() {
+        // Two triangles meeting at one corner position. Welded (one index)
+        // they are neighbours; with the corner split into two indices (a
+        // seam) they are a candidate pair, and they touch.
+        let mesh = [
+            Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y),
+            Triangle::new(Vec3::ZERO, -Vec3::X, -Vec3::Y),
+        ];
+        let opts = CollideOptions {
+            runs: 1,
+            verify: true,
+            ..CollideOptions::default()
+        };
+        let welded = run_self("welded", &mesh, &crate::mesh::weld(&mesh), &opts).unwrap();
+        assert_eq!((welded.adjacent_pairs, welded.candidate_pairs), (1, 0));
+        let split = run_self("split", &mesh, &[[0, 1, 2], [3, 4, 5]], &opts).unwrap();
+        assert_eq!(
+            (
+                split.adjacent_pairs,
+                split.candidate_pairs,
+                split.intersecting_pairs
+            ),
+            (0, 1, 1)
+        );
+        assert_eq!(split.verified, Some(true));
+        assert!(run_self("short", &mesh, &[[0, 1, 2]], &opts).is_err());
     }
 
     /// A flat square of `n` x `n` cells (two triangles each), side 2, at
@@ -964,7 +1009,8 @@ mod tests {
 
     #[test]
     fn distance_is_refused_with_self_and_verify_on_large_scenes() {
-        let err = run_self("rock", &scene::rock(1, 1), &with_distance()).unwrap_err();
+        let rock = scene::rock(1, 1);
+        let err = run_self("rock", &rock, &crate::mesh::weld(&rock), &with_distance()).unwrap_err();
         assert!(err.contains("--self"), "{err}");
         assert!(check_verify_distance(5_120, 5_120).is_ok());
         let err = check_verify_distance(81_920, 81_920).unwrap_err();

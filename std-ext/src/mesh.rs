@@ -38,18 +38,41 @@ impl std::error::Error for MeshError {}
 /// Loads every triangle of a mesh file (all objects of an OBJ file together);
 /// a file with vertices but no faces gives no triangles, not an error.
 pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
+    load_indexed(path).map(|m| m.triangles)
+}
+
+/// A loaded mesh: its triangles and, for each, the indices of its three
+/// corners in the file's vertex list (what "two triangles share a vertex"
+/// means for self-collision).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct IndexedMesh {
+    /// The triangles, in file order (polygons fan-triangulated).
+    pub triangles: Vec<Triangle>,
+    /// Each triangle's corner indices. OBJ, PLY and OFF give the file's own
+    /// (an OBJ file's objects numbered one after the other); STL has no
+    /// vertex list, so its corners are numbered by position
+    /// ([`weld`]: equal coordinates, one index).
+    pub corners: Vec<[u32; 3]>,
+}
+
+/// Like [`load`], keeping each triangle's vertex indices.
+pub fn load_indexed(path: &Path) -> Result<IndexedMesh, MeshError> {
     let fail = |reason: String| MeshError {
         path: path.to_path_buf(),
         reason,
     };
-    let tris = match path
+    let mesh = match path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .as_deref()
     {
         Some("obj") => load_obj(path, &fail)?,
-        Some("stl") => load_stl(path, &fail)?,
+        Some("stl") => {
+            let triangles = load_stl(path, &fail)?;
+            let corners = weld(&triangles);
+            IndexedMesh { triangles, corners }
+        }
         Some("ply") => load_ply(path, &fail)?,
         Some("off") => load_off(path, &fail)?,
         _ => {
@@ -59,7 +82,25 @@ pub fn load(path: &Path) -> Result<Vec<Triangle>, MeshError> {
         }
     };
     // A file with no faces is a valid, empty mesh: it builds the empty tree.
-    Ok(tris)
+    debug_assert_eq!(mesh.triangles.len(), mesh.corners.len());
+    Ok(mesh)
+}
+
+/// Corner indices by position: corners with the same coordinates (bit for
+/// bit, `-0.0` and `0.0` alike) get the same index. For meshes without a
+/// vertex list (STL, generated scenes).
+pub fn weld(triangles: &[Triangle]) -> Vec<[u32; 3]> {
+    let mut index = std::collections::HashMap::new();
+    let key = |v: Vec3| (v + Vec3::ZERO).to_array().map(f32::to_bits);
+    triangles
+        .iter()
+        .map(|t| {
+            t.v.map(|v| {
+                let next = index.len() as u32;
+                *index.entry(key(v)).or_insert(next)
+            })
+        })
+        .collect()
 }
 
 type Fail<'a> = &'a dyn Fn(String) -> MeshError;
@@ -166,7 +207,7 @@ fn line_of_nth(text: &[u8], word: &[u8], nth: usize) -> Option<usize> {
 fn fan(
     poly: &[usize],
     vertices: &[Vec3],
-    out: &mut Vec<Triangle>,
+    out: &mut IndexedMesh,
     fail: Fail<'_>,
     at: &dyn Fn() -> String,
 ) -> Result<(), MeshError> {
@@ -184,7 +225,9 @@ fn fan(
     };
     let first = v(poly[0])?;
     for w in poly[1..].windows(2) {
-        out.push(Triangle::new(first, v(w[0])?, v(w[1])?));
+        out.triangles.push(Triangle::new(first, v(w[0])?, v(w[1])?));
+        // In range of `vertices`, whose length came from a file's count.
+        out.corners.push([poly[0], w[0], w[1]].map(|i| i as u32));
     }
     Ok(())
 }
@@ -438,7 +481,7 @@ impl<'a> PlyPlaces<'a> {
     }
 }
 
-fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+fn load_ply(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     use ply_rs::ply::Property;
     let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
     check_ply_header(&bytes, fail)?;
@@ -473,7 +516,7 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
         let p = Vec3::new(c("x")? as f32, c("y")? as f32, c("z")? as f32);
         vertices.push(finite(p, || places.at("vertex", k), fail)?);
     }
-    let mut out = Vec::new();
+    let mut out = IndexedMesh::default();
     for (k, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
         let list = f.get("vertex_indices").or_else(|| f.get("vertex_index"));
         let poly: Vec<i64> = match list {
@@ -509,7 +552,7 @@ fn load_ply(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
 /// its indices; both are read past. The homogeneous `4OFF` and the
 /// n-dimensional `nOFF` are refused. One vertex or face per line, as every
 /// writer does; the header's counts may share the keyword's line.
-fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+fn load_off(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
     // Non-empty lines with their numbers; comments (#) dropped.
     let mut lines = text.lines().enumerate().filter_map(|(n, line)| {
@@ -570,7 +613,7 @@ fn load_off(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
             fail,
         )?);
     }
-    let mut out = Vec::new();
+    let mut out = IndexedMesh::default();
     for k in 0..nf {
         let (n, line) = next_line("all faces")?;
         let mut words = line.split_whitespace();
@@ -667,7 +710,7 @@ fn check_obj(text: &str, fail: Fail<'_>) -> Result<(), MeshError> {
     Ok(())
 }
 
-fn load_obj(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
+fn load_obj(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     let text = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
     check_obj(&String::from_utf8_lossy(&text), fail)?;
     let options = tobj::LoadOptions {
@@ -676,7 +719,10 @@ fn load_obj(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
         ..Default::default()
     };
     let (models, _) = tobj::load_obj(path, &options).map_err(|e| fail(e.to_string()))?;
-    let mut tris = Vec::new();
+    let mut out = IndexedMesh::default();
+    // tobj numbers each object's vertices from 0: the objects' numbers
+    // follow one another.
+    let mut base = 0u32;
     for m in &models {
         let pos = &m.mesh.positions;
         let vertices = pos.len() / 3;
@@ -704,10 +750,13 @@ fn load_obj(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
             if f.len() < 3 {
                 return Err(fail(format!("object '{}': incomplete face", m.name)));
             }
-            tris.push(Triangle::new(vertex(f[0])?, vertex(f[1])?, vertex(f[2])?));
+            out.triangles
+                .push(Triangle::new(vertex(f[0])?, vertex(f[1])?, vertex(f[2])?));
+            out.corners.push([f[0], f[1], f[2]].map(|i| base + i));
         }
+        base += vertices as u32;
     }
-    Ok(tris)
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -750,6 +799,39 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("too large"));
+    }
+
+    #[test]
+    fn corners_keep_the_files_vertex_indices() {
+        // A quad (two triangles sharing vertices 0 and 2) and, in OBJ, a
+        // second object whose numbers follow the first's.
+        let obj = "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n\
+                   o b\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 5 6 7\n";
+        let m = load_indexed(&write("two.obj", obj)).unwrap();
+        assert_eq!(m.triangles.len(), 3);
+        assert_eq!(&m.corners[..2], &[[0, 1, 2], [0, 2, 3]]);
+        assert!(m.corners[2].iter().all(|&i| i >= 4), "{:?}", m.corners);
+        let off = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+        let m = load_indexed(&write("quad.off", off)).unwrap();
+        assert_eq!(m.corners, [[0, 1, 2], [0, 2, 3]]);
+        let ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+                   element face 1\nproperty list uchar int vertex_indices\nend_header\n\
+                   0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 3 2 1 0\n";
+        let m = load_indexed(&write("quad.ply", ply)).unwrap();
+        assert_eq!(m.corners, [[3, 2, 1], [3, 1, 0]]);
+        // Two vertices at one position keep two indices (a seam).
+        let seam = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nv -1 0 0\nf 1 2 3\nf 4 5 3\n";
+        let m = load_indexed(&write("seam.obj", seam)).unwrap();
+        assert_eq!(m.corners, [[0, 1, 2], [3, 4, 2]]);
+        // STL has no vertex list: corners are numbered by position.
+        let stl = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n\
+                   facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+        let m = load_indexed(&write("two.stl", stl)).unwrap();
+        assert_eq!(m.corners, [[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(
+            weld(&[Triangle::new(Vec3::ZERO, -Vec3::ZERO, Vec3::X)]),
+            [[0, 0, 1]]
+        );
     }
 
     #[test]

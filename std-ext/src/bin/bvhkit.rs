@@ -644,7 +644,7 @@ fn main() -> ExitCode {
             let bar = spinner("loading, building and colliding");
             if self_collide {
                 let (name, mesh) = match &a {
-                    Some(a) => match bvhkit_std::mesh::load(a) {
+                    Some(a) => match bvhkit_std::mesh::load_indexed(a) {
                         Ok(m) => (a.display().to_string(), m),
                         Err(e) => {
                             bar.finish_and_clear();
@@ -652,10 +652,12 @@ fn main() -> ExitCode {
                             return ExitCode::FAILURE;
                         }
                     },
-                    None => (
-                        format!("rock ({subdivisions} subdivisions)"),
-                        bvhkit_std::scene::rock(subdivisions, 1),
-                    ),
+                    None => {
+                        let triangles = bvhkit_std::scene::rock(subdivisions, 1);
+                        let corners = bvhkit_std::mesh::weld(&triangles);
+                        let mesh = bvhkit_std::mesh::IndexedMesh { triangles, corners };
+                        (format!("rock ({subdivisions} subdivisions)"), mesh)
+                    }
                 };
                 let opts = CollideOptions {
                     volume: bv,
@@ -666,7 +668,7 @@ fn main() -> ExitCode {
                     verify,
                     ..CollideOptions::default()
                 };
-                let report = collide::run_self(&name, &mesh, &opts);
+                let report = collide::run_self(&name, &mesh.triangles, &mesh.corners, &opts);
                 bar.finish_and_clear();
                 let report = match report {
                     Ok(r) => r,
