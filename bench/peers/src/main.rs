@@ -10,7 +10,12 @@
 //!
 //! Run it through `scripts/bench-peers` (it fetches the meshes first):
 //! `bvhkit-bench-peers [--quick] [--rays N] [--mesh FILE]... [--no-instanced] [--out DIR]`
+//!
+//! `--broad-phase` runs only the broad-phase comparison (`broad_phase.rs`:
+//! moving boxes, bvhkit's `PairTracker` and rebuild against parry3d's
+//! incremental `Bvh`) and writes `broad-phase.md` instead.
 
+mod broad_phase;
 mod bvh_peer;
 mod common;
 mod obvhs_peer;
@@ -39,6 +44,7 @@ const COPIES: (usize, usize) = (5, 4);
 
 struct Options {
     quick: bool,
+    broad_phase: bool,
     rays: usize,
     meshes: Vec<PathBuf>,
     instanced: bool,
@@ -48,6 +54,7 @@ struct Options {
 fn options() -> Result<Options, String> {
     let mut o = Options {
         quick: false,
+        broad_phase: false,
         rays: 0,
         meshes: Vec::new(),
         instanced: true,
@@ -58,17 +65,16 @@ fn options() -> Result<Options, String> {
         let mut value = || args.next().ok_or(format!("{a} needs a value"));
         match a.as_str() {
             "--quick" => o.quick = true,
+            "--broad-phase" => o.broad_phase = true,
             "--no-instanced" => o.instanced = false,
             "--rays" => o.rays = value()?.parse().map_err(|e| format!("--rays: {e}"))?,
             "--mesh" => o.meshes.push(value()?.into()),
             "--out" => o.out = value()?.into(),
-            "-h" | "--help" => {
-                return Err(
-                    "usage: bvhkit-bench-peers [--quick] [--rays N] [--mesh FILE]... \
+            "-h" | "--help" => return Err(
+                "usage: bvhkit-bench-peers [--quick] [--broad-phase] [--rays N] [--mesh FILE]... \
                             [--no-instanced] [--out DIR]"
-                        .into(),
-                )
-            }
+                    .into(),
+            ),
             _ => return Err(format!("unknown argument {a} (try --help)")),
         }
     }
@@ -107,6 +113,10 @@ fn main() {
     };
     let sample = if o.quick { 32 } else { 200 };
     let started = Instant::now();
+    if o.broad_phase {
+        broad_phase_only(&o, started);
+        return;
+    }
     let mut results = Vec::new();
     for path in &o.meshes {
         let tris = match bvhkit_std::mesh::load(path) {
@@ -148,6 +158,30 @@ fn main() {
         .collect();
     if !wrong.is_empty() {
         eprintln!("WRONG ANSWERS: {}", wrong.join(", "));
+        std::process::exit(1);
+    }
+}
+
+/// The broad-phase section alone: prints it, writes `broad-phase.md` and
+/// exits non-zero if the pair counts disagree.
+fn broad_phase_only(o: &Options, started: Instant) {
+    let cases = broad_phase::run(o.quick);
+    let runs = Runs {
+        build: 0,
+        pairs: 0,
+        rays: 0,
+    };
+    let stamp = report::Stamp::now(PEERS, &o.quick, 0, runs, started.elapsed());
+    let md = broad_phase::markdown(&cases, &stamp);
+    println!("{md}");
+    let path = o.out.join("broad-phase.md");
+    if let Err(e) = std::fs::create_dir_all(&o.out).and_then(|()| std::fs::write(&path, &md)) {
+        eprintln!("could not write {}: {e}", path.display());
+        std::process::exit(1);
+    }
+    eprintln!("wrote {}", path.display());
+    if cases.iter().any(|c| !c.agree) {
+        eprintln!("WRONG ANSWERS: broad-phase pair counts disagree");
         std::process::exit(1);
     }
 }

@@ -149,7 +149,7 @@ fn bytes_per_tri(row: &Row, tris: usize) -> f64 {
 }
 
 /// `x / y` as `0.42x`, or `-` when either is missing.
-fn ratio(x: Option<f64>, y: Option<f64>) -> String {
+pub(crate) fn ratio(x: Option<f64>, y: Option<f64>) -> String {
     match (x, y) {
         (Some(x), Some(y)) if y > 0.0 => format!("{:.2}x", x / y),
         _ => "-".into(),
@@ -344,7 +344,8 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
     s
 }
 
-fn fmt(v: f64) -> String {
+/// A time or rate with three significant-ish digits.
+pub(crate) fn fmt(v: f64) -> String {
     if v >= 100.0 {
         format!("{v:.0}")
     } else if v >= 10.0 {
