@@ -3,7 +3,6 @@
 //! steps separately. `cargo run --release -p bvhkit-std --example profile_broad_phase`
 use bvhkit::builders::{DynNode, DynamicConfig};
 use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
-use bvhkit::glam::Vec3;
 use bvhkit::Aabb;
 use std::time::{Duration, Instant};
 
@@ -14,21 +13,8 @@ fn main() {
         1
     };
     let n = 100_000usize;
-    let side = (n as f32 * 2.0).cbrt() * 1.6;
-    let mut s = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let mut pos: Vec<Vec3> = (0..n)
-        .map(|_| Vec3::new(next(), next(), next()) * side)
-        .collect();
-    let vel: Vec<Vec3> = (0..n)
-        .map(|_| (Vec3::new(next(), next(), next()) - 0.5) * 0.04)
-        .collect();
-    let boxed = |p: Vec3| Aabb::new(p, p + 1.0);
+    // The benchmarks' scene: boxes drifting in a cube, bouncing off its walls.
+    let mut drift = bvhkit_std::scene::Drift::new(n);
     let m = 16 * n;
     let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
     let (mut slots, mut boxes, mut moved) =
@@ -55,17 +41,14 @@ fn main() {
         },
     )
     .unwrap();
-    for (i, p) in pos.iter().enumerate() {
-        world.insert(i as u32, &boxed(*p)).unwrap();
+    for (i, b) in drift.boxes().iter().enumerate() {
+        world.insert(i as u32, b).unwrap();
     }
     world.step(|_| {}).unwrap();
     let (mut t_update, mut t_step) = (Duration::ZERO, Duration::ZERO);
     for step in 0..30 {
         let t = Instant::now();
-        for i in (step % every..n).step_by(every) {
-            pos[i] += vel[i];
-            world.set_bounds(i as u32, &boxed(pos[i])).unwrap();
-        }
+        drift.advance(every, step, |i, b| world.set_bounds(i as u32, &b).unwrap());
         t_update += t.elapsed();
         let t = Instant::now();
         world.step(|_| {}).unwrap();

@@ -7,7 +7,7 @@
 //! several scales, and a contact region between two objects.
 
 use bvhkit::glam::{Mat3, Vec3};
-use bvhkit::Triangle;
+use bvhkit::{Aabb, Triangle};
 use std::collections::HashMap;
 
 /// A displaced icosphere with `20 * 4^subdivisions` triangles (6 -> 81 920).
@@ -195,5 +195,80 @@ mod tests {
             "{}",
             pairs.len()
         );
+    }
+}
+
+/// Boxes of side 1 drifting in a cube, bouncing off its walls: the moving
+/// scene of the broad-phase benchmarks (`--bench broad_phase`,
+/// `bench-peers --broad-phase`, the `profile_broad_phase` example). The
+/// cube is sized for a fixed density, about 4 overlapping pairs per box.
+///
+/// ```
+/// let mut drift = bvhkit_std::scene::Drift::new(1000);
+/// let before = drift.boxes();
+/// let mut moved = 0;
+/// drift.advance(10, 0, |_, _| moved += 1); // one box in ten moves
+/// assert_eq!(moved, 100);
+/// assert_ne!(drift.boxes(), before);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Drift {
+    /// Each box's minimum corner.
+    pub positions: Vec<Vec3>,
+    /// Each box's move per step.
+    pub velocities: Vec<Vec3>,
+    /// The cube's side.
+    pub side: f32,
+}
+
+impl Drift {
+    /// `n` boxes, placed and set moving by a small deterministic generator.
+    pub fn new(n: usize) -> Self {
+        let side = (n as f32 * 2.0).cbrt() * 1.6;
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let positions = (0..n)
+            .map(|_| Vec3::new(next(), next(), next()) * side)
+            .collect();
+        let velocities = (0..n)
+            .map(|_| (Vec3::new(next(), next(), next()) - 0.5) * 0.04)
+            .collect();
+        Drift {
+            positions,
+            velocities,
+            side,
+        }
+    }
+
+    /// The box of side 1 at minimum corner `p`.
+    pub fn boxed(p: Vec3) -> Aabb {
+        Aabb::new(p, p + 1.0)
+    }
+
+    /// Every box, in order.
+    pub fn boxes(&self) -> Vec<Aabb> {
+        self.positions.iter().map(|&p| Self::boxed(p)).collect()
+    }
+
+    /// Moves every `every`-th box (starting at `step % every`, so that
+    /// successive steps move different boxes), bouncing off the walls, and
+    /// calls `f(i, box)` for each moved box.
+    pub fn advance(&mut self, every: usize, step: usize, mut f: impl FnMut(usize, Aabb)) {
+        let n = self.positions.len();
+        for i in (step % every..n).step_by(every) {
+            let (p, v) = (&mut self.positions[i], &mut self.velocities[i]);
+            *p += *v;
+            for a in 0..3 {
+                if p[a] < 0.0 || p[a] > self.side {
+                    v[a] = -v[a];
+                }
+            }
+            f(i, Self::boxed(*p));
+        }
     }
 }

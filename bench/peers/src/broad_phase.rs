@@ -12,9 +12,9 @@
 use crate::common::boxes_overlap;
 use bvhkit::builders::{DynNode, DynamicConfig};
 use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
-use bvhkit::glam::Vec3;
 use bvhkit::query::SelfPairs;
 use bvhkit::{Aabb, Node, TopDown};
+use bvhkit_std::scene::Drift;
 use parry3d::bounding_volume::Aabb as ParryAabb;
 use parry3d::math::Vector;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
@@ -44,51 +44,6 @@ pub struct Case {
     pub agree: bool,
 }
 
-/// Positions and velocities of `n` boxes of side 1 in a cube sized for
-/// a fixed density (a small deterministic generator, no dependency).
-fn scene(n: usize) -> (Vec<Vec3>, Vec<Vec3>, f32) {
-    let side = (n as f32 * 2.0).cbrt() * 1.6;
-    let mut s = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let pos = (0..n)
-        .map(|_| Vec3::new(next(), next(), next()) * side)
-        .collect();
-    let vel = (0..n)
-        .map(|_| (Vec3::new(next(), next(), next()) - 0.5) * 0.04)
-        .collect();
-    (pos, vel, side)
-}
-
-fn boxed(p: Vec3) -> Aabb {
-    Aabb::new(p, p + 1.0)
-}
-
-/// Advances the movers (every `every`-th box, shifted by `step`) and
-/// bounces them off the cube's walls.
-fn advance(
-    pos: &mut [Vec3],
-    vel: &mut [Vec3],
-    side: f32,
-    every: usize,
-    step: usize,
-    mut f: impl FnMut(usize, Vec3),
-) {
-    for i in (step % every..pos.len()).step_by(every) {
-        pos[i] += vel[i];
-        for a in 0..3 {
-            if pos[i][a] < 0.0 || pos[i][a] > side {
-                vel[i][a] = -vel[i][a];
-            }
-        }
-        f(i, pos[i]);
-    }
-}
-
 /// Runs `step(k)` for `WARM_UP + steps` steps; the median of the counted
 /// steps' times (ms) and every counted step's pair count.
 fn timed(steps: usize, mut step: impl FnMut(usize) -> usize) -> (f64, Vec<usize>) {
@@ -108,7 +63,7 @@ fn timed(steps: usize, mut step: impl FnMut(usize) -> usize) -> (f64, Vec<usize>
 }
 
 fn tracker(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
-    let (mut pos, mut vel, side) = scene(n);
+    let mut drift = Drift::new(n);
     let m = 16 * n;
     let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
     let (mut slots, mut boxes, mut moved) =
@@ -127,25 +82,25 @@ fn tracker(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
         ..Default::default()
     };
     let mut world = PairTracker::new(storage, config).expect("tracker storage");
-    for (i, p) in pos.iter().enumerate() {
-        world.insert(i as u32, &boxed(*p)).expect("insert");
+    for (i, b) in drift.boxes().iter().enumerate() {
+        world.insert(i as u32, b).expect("insert");
     }
     world.step(|_| {}).expect("first step");
     timed(steps, |k| {
-        advance(&mut pos, &mut vel, side, every, k, |i, p| {
-            world.set_bounds(i as u32, &boxed(p)).expect("set_bounds")
+        drift.advance(every, k, |i, b| {
+            world.set_bounds(i as u32, &b).expect("set_bounds")
         });
         world.step(|_| {}).expect("step").pairs
     })
 }
 
 fn rebuild(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
-    let (mut pos, mut vel, side) = scene(n);
-    let mut all: Vec<Aabb> = pos.iter().map(|p| boxed(*p)).collect();
+    let mut drift = Drift::new(n);
+    let mut all: Vec<Aabb> = drift.boxes();
     let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(n)];
     let mut idx = vec![0u32; n];
     timed(steps, |k| {
-        advance(&mut pos, &mut vel, side, every, k, |i, p| all[i] = boxed(p));
+        drift.advance(every, k, |i, b| all[i] = b);
         let tree = TopDown::default()
             .build(&all, &mut nodes, &mut idx)
             .expect("build");
@@ -162,8 +117,8 @@ fn parry_box(b: &Aabb) -> ParryAabb {
 }
 
 fn parry(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
-    let (mut pos, mut vel, side) = scene(n);
-    let mut all: Vec<Aabb> = pos.iter().map(|p| boxed(*p)).collect();
+    let mut drift = Drift::new(n);
+    let mut all: Vec<Aabb> = drift.boxes();
     // Fat leaves from the start, as `insert_or_update_partially` makes them.
     let fat: Vec<ParryAabb> = all
         .iter()
@@ -172,8 +127,8 @@ fn parry(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
     let mut bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &fat);
     let mut ws = BvhWorkspace::default();
     timed(steps, |k| {
-        advance(&mut pos, &mut vel, side, every, k, |i, p| {
-            all[i] = boxed(p);
+        drift.advance(every, k, |i, b| {
+            all[i] = b;
             // A leaf is only enlarged (by MARGIN) when the box leaves it.
             let _ = bvh.insert_or_update_partially(parry_box(&all[i]), i as u32, MARGIN);
         });
@@ -292,7 +247,7 @@ pub fn markdown(cases: &[Case], stamp: &crate::report::Stamp) -> String {
          then `traverse_bvtt_single_tree::<false>` (every pair of overlapping leaves, each unordered pair \
          once). Its leaves are fat, so its pairs are filtered by the exact (closed) box overlap before \
          counting.\n\
-         - The same scene as `std-ext/benches/broad_phase.rs` (boxes of side 1, about 4 pairs a box); \
+         - The same scene as `std-ext/benches/broad_phase.rs` (`bvhkit_std::scene::Drift`) (boxes of side 1, about 4 pairs a box); \
          every method's pair count is checked on every counted step. One thread."
     );
     s
