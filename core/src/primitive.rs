@@ -91,8 +91,13 @@ impl Primitive for Triangle {
             self.v[0].max(self.v[1]).max(self.v[2]),
         )
     }
+    #[inline]
+    #[allow(clippy::eq_op)] // `x - x` is the point: 0 only for a finite `x`
     fn is_finite(&self) -> bool {
-        self.v.iter().all(|p| p.is_finite())
+        // `x - x` is 0 for a finite `x` and NaN for an infinite or NaN one:
+        // one comparison for all nine coordinates.
+        let [a, b, c] = self.v;
+        ((a - a) + (b - b) + (c - c)).cmpeq(Vec3::ZERO).all()
     }
 }
 
@@ -170,20 +175,38 @@ impl<P: Primitive> Primitive for &P {
 /// Checks a primitive slice once, before any min/max fold can hide a bad value.
 /// An empty slice is valid: it builds the empty tree.
 pub(crate) fn validate<P: Primitive>(prims: &[P]) -> Result<(), crate::Error> {
+    validate_bounds(prims).map(|_| ())
+}
+
+/// [`validate`], returning what the same pass sees: the box around every
+/// primitive and the box around their boxes' centres (both empty for no
+/// primitives). Builders that need them save a pass over the input.
+pub(crate) fn validate_bounds<P: Primitive>(prims: &[P]) -> Result<(Aabb, Aabb), crate::Error> {
     use crate::Error;
     if prims.len() > crate::tree::MAX_PRIMITIVES {
         return Err(Error::IndexOverflow { count: prims.len() });
     }
-    for (i, p) in prims.iter().enumerate() {
-        if !p.is_finite() {
-            return Err(Error::NonFiniteCoordinate { primitive: i });
-        }
+    // One branch-free pass for the common case; a bad primitive is looked
+    // up again only to name it.
+    let limit = Vec3::splat(MAX_COORDINATE);
+    let in_range =
+        |p: &P, b: &Aabb| p.is_finite() & b.min.abs().max(b.max.abs()).cmple(limit).all();
+    let (mut scene, mut centres, mut ok) = (Aabb::EMPTY, Aabb::EMPTY, true);
+    for p in prims {
         let b = p.bounds();
-        if !(b.min.abs().max_element() <= MAX_COORDINATE
-            && b.max.abs().max_element() <= MAX_COORDINATE)
-        {
-            return Err(Error::CoordinateOutOfRange { primitive: i });
+        ok &= in_range(p, &b);
+        scene = scene.union(&b);
+        centres.grow(b.center());
+    }
+    if !ok {
+        for (i, p) in prims.iter().enumerate() {
+            if !p.is_finite() {
+                return Err(Error::NonFiniteCoordinate { primitive: i });
+            }
+            if !in_range(p, &p.bounds()) {
+                return Err(Error::CoordinateOutOfRange { primitive: i });
+            }
         }
     }
-    Ok(())
+    Ok((scene, centres))
 }

@@ -1,9 +1,12 @@
 //! Builds the default rock repeatedly (for profilers): `cargo run --release -p bvhkit-std --example profile_build`.
 //! `PLOC=r` builds bottom-up with PLOC of radius `r` instead (with the
 //! default leaf collapse, or none with `COLLAPSE=none`), in the same caller
-//! buffers each time.
+//! buffers each time; add `OWNED=1` to build through
+//! `OwnedBvh::build_bottom_up` (fresh buffers and kept leaf bounds, as the
+//! peer benchmark does) from the triangles' boxes, and `MESH=path` to build
+//! a mesh file instead of the rock.
 use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, Collapse, Method, PrimitiveRef};
-use bvhkit::{Aabb, Node, TopDown};
+use bvhkit::{Aabb, Node, Primitive, TopDown};
 fn main() {
     if let Some(radius) = std::env::var("PLOC").ok().and_then(|v| v.parse().ok()) {
         return ploc(radius);
@@ -55,7 +58,10 @@ fn main() {
 }
 
 fn ploc(radius: u32) {
-    let tris = bvhkit_std::scene::rock(6, 1);
+    let tris = match std::env::var("MESH") {
+        Ok(path) => bvhkit_std::mesh::load(path.as_ref()).expect("MESH loads"),
+        Err(_) => bvhkit_std::scene::rock(6, 1),
+    };
     let n = tris.len();
     let builder = BottomUp {
         method: Method::Ploc { radius },
@@ -82,6 +88,16 @@ fn ploc(radius: u32) {
             work: &mut work,
             keys: &mut keys,
         };
+        if std::env::var_os("OWNED").is_some() {
+            let boxes: Vec<Aabb> = tris.iter().map(|t| t.bounds()).collect();
+            let t = std::time::Instant::now();
+            let owned = bvhkit_std::OwnedBvh::<Aabb>::build_bottom_up(&builder, &boxes).unwrap();
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            if stats.is_none() {
+                stats = Some((owned.view().node_count(), owned.view().stats().sah_cost));
+            }
+            continue;
+        }
         let t = std::time::Instant::now();
         let bvh = builder
             .build(&tris, &mut nodes, &mut idx, &mut scratch)

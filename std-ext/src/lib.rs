@@ -179,22 +179,30 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     ) -> Result<Self, Error> {
         use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster};
         let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
-        // Zero bits: the builder writes every cluster it reads, and zeroed
-        // pages cost nothing until then (a fill of `EMPTY` wrote 64 bytes
-        // per primitive first).
-        let mut clusters = vec![Cluster::<B>::ZERO; nc];
         let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
-        let mut scratch = BottomUpScratch {
-            clusters: &mut clusters,
-            work: &mut work,
-            keys: &mut keys,
-        };
         let mut nodes = vec![Node::<B>::ZERO; bvhkit::max_nodes(prims.len())];
         let mut indices = vec![0u32; prims.len()];
-        let (used, depth, report) = {
-            let t = builder.build(prims, &mut nodes, &mut indices, &mut scratch)?;
-            (t.node_count(), t.depth(), t.build_report())
+        // PLOC without a collapse builds in `nodes`: the clusters (as many
+        // bytes again) are allocated only if the tree comes out too deep
+        // and must be rebuilt there.
+        let mut attempt = |clusters: &mut [Cluster<B>]| {
+            let mut scratch = BottomUpScratch {
+                clusters,
+                work: &mut work,
+                keys: &mut keys,
+            };
+            builder
+                .build(prims, &mut nodes, &mut indices, &mut scratch)
+                .map(|t| (t.node_count(), t.depth(), t.build_report()))
         };
+        let (used, depth, report) = if builder.needs_clusters() {
+            attempt(&mut vec![Cluster::ZERO; nc])
+        } else {
+            match attempt(&mut []) {
+                Err(Error::StackOverflow { .. }) => attempt(&mut vec![Cluster::ZERO; nc]),
+                other => other,
+            }
+        }?;
         nodes.truncate(used);
         OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth, report)
     }
@@ -227,8 +235,16 @@ impl<B: BoundingVolume> OwnedBvh<B> {
         depth: usize,
         report: BuildReport,
     ) -> Result<Self, Error> {
-        let mut leaf_bounds = vec![Aabb::ZERO; indices.len()];
-        Bvh::from_raw_parts(&nodes, &indices, depth).with_leaf_bounds(prims, &mut leaf_bounds)?;
+        // Collected rather than written into a zeroed vector: one pass
+        // over the new memory instead of two.
+        let leaf_bounds = indices
+            .iter()
+            .map(|&i| prims.get(i as usize).map(Primitive::bounds))
+            .collect::<Option<Vec<Aabb>>>()
+            .ok_or(Error::PrimitiveCountMismatch {
+                tree: indices.iter().max().map_or(0, |&i| i as usize + 1),
+                given: prims.len(),
+            })?;
         Ok(OwnedBvh {
             nodes,
             indices,

@@ -17,8 +17,8 @@
 
 use super::{BuildReport, Collapse};
 use crate::bv::{Aabb, BoundingVolume};
-use crate::primitive::{validate, Primitive};
-use crate::tree::{Bvh, Node};
+use crate::primitive::{validate_bounds, Primitive};
+use crate::tree::{Bvh, Node, MAX_DEPTH};
 use crate::Error;
 
 /// What "smallest merged volume" measures.
@@ -77,7 +77,10 @@ impl<B: BoundingVolume> Cluster<B> {
 /// from [`BottomUp::scratch_len`].
 #[derive(Debug)]
 pub struct BottomUpScratch<'s, B> {
-    /// At least `2n - 1` clusters.
+    /// At least `2n - 1` clusters, or none at all where
+    /// [`BottomUp::needs_clusters`] says so (PLOC without a collapse): such
+    /// a build refuses a tree deeper than [`MAX_DEPTH`](crate::MAX_DEPTH)
+    /// instead of rebuilding its deep subtrees balanced here.
     pub clusters: &'s mut [Cluster<B>],
     /// At least `2n` words (active list and neighbour table).
     pub work: &'s mut [u32],
@@ -146,6 +149,14 @@ impl BottomUp {
         (crate::max_nodes(n), 2 * n, 2 * n)
     }
 
+    /// Whether [`build`](Self::build) needs [`BottomUpScratch::clusters`]
+    /// in full: PLOC without a collapse builds in `nodes` and reads the
+    /// clusters only to limit a tree deeper than
+    /// [`MAX_DEPTH`](crate::MAX_DEPTH).
+    pub const fn needs_clusters(&self) -> bool {
+        !matches!(self.method, Method::Ploc { .. }) || self.collapse.max_leaf_size() > 1
+    }
+
     /// Builds a tree into `nodes` (at least [`max_nodes(n)`](crate::max_nodes))
     /// and `indices` (at least `n`): one primitive per leaf, then the
     /// [`Collapse`] of the configuration.
@@ -160,7 +171,7 @@ impl BottomUp {
         indices: &'a mut [u32],
         scratch: &mut BottomUpScratch<'_, B>,
     ) -> Result<Bvh<'a, B>, Error> {
-        validate(prims)?;
+        let (scene, centres) = validate_bounds(prims)?;
         let n = prims.len();
         if n == 0 {
             return Ok(Bvh::from_built(&nodes[..0], &indices[..0], 0));
@@ -179,7 +190,7 @@ impl BottomUp {
             });
         }
         let uses_keys = matches!(self.method, Method::Ploc { .. });
-        if scratch.clusters.len() < nc
+        if (self.needs_clusters() && scratch.clusters.len() < nc)
             || scratch.work.len() < nw
             || (uses_keys && scratch.keys.len() < nk)
         {
@@ -193,9 +204,13 @@ impl BottomUp {
             }
         }
         let clusters = &mut *scratch.clusters;
-        let (active, rest) = scratch.work.split_at_mut(n);
+        let mut report = BuildReport {
+            max_leaf_size: self.collapse.max_leaf_size(),
+            ..BuildReport::default()
+        };
         let root = match self.method {
             Method::Exhaustive => {
+                let active = &mut scratch.work[..n];
                 for (i, p) in prims.iter().enumerate() {
                     clusters[i] = Cluster {
                         bv: B::from_aabb(&p.bounds()),
@@ -204,17 +219,48 @@ impl BottomUp {
                     };
                     active[i] = i as u32;
                 }
-                exhaustive(clusters, active, n, self.metric, scene_scale(prims))
+                exhaustive(clusters, active, n, self.metric, unit_scale(&scene))
             }
-            Method::Ploc { radius } => ploc(
-                prims,
-                clusters,
-                active,
-                &mut rest[..n],
-                &mut scratch.keys[..2 * n],
-                radius as usize,
-                self.metric,
-            ),
+            Method::Ploc { radius } => {
+                let scale = unit_scale(&scene);
+                let depth = ploc(
+                    prims,
+                    morton_order(prims, &centres, &mut scratch.keys[..2 * n]),
+                    nodes,
+                    indices,
+                    scratch.work,
+                    radius as usize,
+                    |bv: &B| cost(bv, self.metric, scale),
+                );
+                if depth as usize <= MAX_DEPTH && self.collapse.max_leaf_size() <= 1 {
+                    // Already in the query layout, one primitive per leaf.
+                    return Ok(Bvh::from_built(&nodes[..nc], &indices[..n], depth)
+                        .with_build_report(report));
+                }
+                // Too deep, or to be collapsed (which rewrites a depth-first
+                // layout in place): the tree goes to the clusters and comes
+                // back depth first, as the exhaustive method's does.
+                if clusters.len() < nc {
+                    return Err(Error::StackOverflow {
+                        depth: depth as usize,
+                        capacity: MAX_DEPTH,
+                    });
+                }
+                for (s, node) in nodes[..nc].iter().enumerate() {
+                    let (left, right) = if node.count > 0 {
+                        let prim = indices[node.first as usize];
+                        (prim, prim)
+                    } else {
+                        (node.first, node.first + 1)
+                    };
+                    clusters[s] = Cluster {
+                        bv: node.bv,
+                        left,
+                        right,
+                    };
+                }
+                0
+            }
         };
         let emit = |clusters: &[Cluster<B>], nodes: &mut [Node<B>], indices: &mut [u32]| {
             super::emit_layout(root, nodes, indices, |c| {
@@ -226,10 +272,6 @@ impl BottomUp {
                 };
                 (cl.bv, kind)
             })
-        };
-        let mut report = BuildReport {
-            max_leaf_size: self.collapse.max_leaf_size(),
-            ..BuildReport::default()
         };
         let depth = match emit(clusters, nodes, indices) {
             Err(Error::StackOverflow { .. }) => {
@@ -259,14 +301,9 @@ fn cost<B: BoundingVolume>(bv: &B, metric: MergeMetric, scale: f32) -> f32 {
     }
 }
 
-/// 1 / the scene's size: merge costs take the scene's size as the unit of
-/// length, so the largest merges cost about 1 whether the scene is 1e-12 or
-/// 1e30 wide.
-fn scene_scale<P: Primitive>(prims: &[P]) -> f32 {
-    unit_scale(&prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds())))
-}
-
-/// 1 / the size of `scene` (1 for a point or an overflow).
+/// 1 / the size of `scene`: merge costs take the scene's size as the unit
+/// of length, so the largest merges cost about 1 whether the scene is 1e-12
+/// or 1e30 wide (1 for a point or an overflow).
 fn unit_scale(scene: &Aabb) -> f32 {
     let scale = 1.0 / scene.extent().max_element();
     if scale > 0.0 && scale.is_finite() {
@@ -413,117 +450,93 @@ fn exhaustive<B: BoundingVolume>(
     active[0]
 }
 
-/// Locally-ordered clustering; returns the root cluster.
+/// Locally-ordered clustering, written straight into the query layout:
+/// the active clusters sit at the front of `nodes` in curve order (each a
+/// finished node: a leaf, or an inner node whose children are already
+/// placed), and every merge moves its two parts to the back, as a pair of
+/// adjacent children, so the root ends in slot 0 with every parent before
+/// its children and no second pass over the tree. Leaves name their
+/// position on the curve (`sorted`: the keys of [`morton_order`]);
+/// `indices` maps it to the primitive. `work` (`2n`) holds each active
+/// cluster's best partner and its height; `cost` prices a merged volume.
+/// Returns the root's height (the tree's depth), which may
+/// exceed [`MAX_DEPTH`](crate::MAX_DEPTH): the caller then rebuilds.
 fn ploc<B: BoundingVolume, P: Primitive>(
     prims: &[P],
-    clusters: &mut [Cluster<B>],
-    active: &mut [u32],
-    nearest: &mut [u32],
-    keys: &mut [u64],
+    sorted: &[u64],
+    nodes: &mut [Node<B>],
+    indices: &mut [u32],
+    work: &mut [u32],
     radius: usize,
-    metric: MergeMetric,
+    cost: impl Fn(&B) -> f32,
 ) -> u32 {
     let n = prims.len();
-    // One pass for the scene's size (the unit of the merge costs) and the
-    // box of the centres (the Morton grid).
-    let (mut scene, mut centres) = (Aabb::EMPTY, Aabb::EMPTY);
-    for p in prims {
-        let b = p.bounds();
-        scene = scene.union(&b);
-        centres.grow(b.center());
-    }
-    let scale = unit_scale(&scene);
-    // Morton order of the primitive centres, ties by index: each key holds
-    // its 30-bit code above the primitive's index, and a stable radix sort
-    // on the code's bytes (a pass whose digit is the same for every key is
-    // skipped) ping-pongs between the two halves of `keys`, reading them
-    // in order rather than through an index list.
-    let extent = centres.extent();
-    let (keys, spare) = keys.split_at_mut(n);
-    for (i, p) in prims.iter().enumerate() {
-        let c = p.bounds().center();
-        let mut q = [0u32; 3];
-        for k in 0..3 {
-            let t = if extent[k] > 0.0 {
-                (c[k] - centres.min[k]) / extent[k]
-            } else {
-                0.0
-            };
-            q[k] = (t.clamp(0.0, 1.0) * 1023.0) as u32;
-        }
-        keys[i] = (u64::from(morton3(q[0], q[1], q[2])) << 32) | i as u64;
-    }
-    let mut sorted_in_keys = true;
-    for shift in [32u32, 40, 48, 56] {
-        let (from, to) = if sorted_in_keys {
-            (&mut *keys, &mut *spare)
-        } else {
-            (&mut *spare, &mut *keys)
-        };
-        let digit = |key: u64| ((key >> shift) & 0xFF) as usize;
-        let mut start = [0u32; 256];
-        for &key in from.iter() {
-            start[digit(key)] += 1;
-        }
-        if start.iter().any(|&c| c as usize == n) {
-            continue;
-        }
-        let mut sum = 0;
-        for c in start.iter_mut() {
-            (*c, sum) = (sum, sum + *c);
-        }
-        for &key in from.iter() {
-            let d = digit(key);
-            to[start[d] as usize] = key;
-            start[d] += 1;
-        }
-        sorted_in_keys = !sorted_in_keys;
-    }
-    let sorted = if sorted_in_keys { &*keys } else { &*spare };
-    // The leaf clusters in curve order: cluster `k` holds the `k`-th
-    // primitive along the curve, so the first round reads its clusters in
-    // order, and merged clusters (appended as they form) stay close to it.
+    // The leaves in curve order: leaf `k` holds the `k`-th primitive along
+    // the curve.
+    let (nearest, height) = work.split_at_mut(n);
     for (k, &key) in sorted.iter().enumerate() {
         let prim = key as u32;
-        clusters[k] = Cluster {
+        indices[k] = prim;
+        nodes[k] = Node {
             bv: B::from_aabb(&prims[prim as usize].bounds()),
-            left: prim,
-            right: prim,
+            first: k as u32,
+            count: 1,
         };
-        active[k] = k as u32;
+        height[k] = 0;
     }
     let mut k = n;
-    let mut next = n as u32;
+    // The next pair of child slots is `insert - 2, insert - 1`. The front
+    // (`k` clusters) and the back (`2n - 1 - insert` nodes) never overlap
+    // an unread cluster: `k + (2n - 1 - insert) = n + merges <= 2n - 1`,
+    // and the last merge of a round reads its two parts before it writes.
+    let mut insert = 2 * n - 1;
     // Each pair's cost is computed once: row `i` of `ring` holds the costs
     // of `i` with `i + 1 ..= i + radius`, kept until the last of those has
     // read it. Wider windows than the ring recompute both directions.
     let mut ring = [[0.0f32; RING]; RING];
+    let pair_cost = |a: &Node<B>, b: &Node<B>| cost(&a.bv.merge(&b.bv));
     while k > 1 {
-        // Each cluster's best partner within the window.
-        for i in 0..k {
-            let (lo, hi) = (i.saturating_sub(radius), (i + radius + 1).min(k));
-            let bi = &clusters[active[i] as usize].bv;
-            let (mut best, mut partner) = (f32::INFINITY, i);
-            let cached = radius <= RING;
-            for j in lo..hi {
-                if j == i {
-                    continue;
-                }
-                let c = if cached && j < i {
-                    ring[j % RING][i - j - 1]
-                } else {
-                    let c = cost(&bi.merge(&clusters[active[j] as usize].bv), metric, scale);
-                    if cached {
-                        ring[i % RING][j - i - 1] = c;
-                    }
-                    c
-                };
-                // Ties go to the nearer index on the curve, then the lower one.
-                if c < best || (c == best && tie_prefers(i, j, partner)) {
-                    (best, partner) = (c, j);
-                }
+        // Each cluster's best partner within the window. Ties go to the
+        // nearer index on the curve, then to the pair `(2m, 2m + 1)`.
+        if radius == 1 {
+            // Only the two neighbours: each pair's cost is computed once
+            // and compared from both of its ends, without a branch (the
+            // comparisons are coin flips to a predictor). The costs are
+            // finite (validated input, scaled lengths), so these are the
+            // window search's decisions at radius 1: the cheaper side, and
+            // on a tie the side that makes the pair `(2m, 2m + 1)`.
+            let mut left = f32::INFINITY;
+            for i in 0..k - 1 {
+                let right = pair_cost(&nodes[i], &nodes[i + 1]);
+                let go_left = (left < right) | ((left == right) & (i & 1 == 1));
+                nearest[i] = (i + 1 - 2 * usize::from(go_left)) as u32;
+                left = right;
             }
-            nearest[i] = partner as u32;
+            nearest[k - 1] = (k - 2) as u32;
+        } else {
+            for i in 0..k {
+                let (lo, hi) = (i.saturating_sub(radius), (i + radius + 1).min(k));
+                let (mut best, mut partner) = (f32::INFINITY, i);
+                let cached = radius <= RING;
+                for j in lo..hi {
+                    if j == i {
+                        continue;
+                    }
+                    let c = if cached && j < i {
+                        ring[j % RING][i - j - 1]
+                    } else {
+                        let c = pair_cost(&nodes[i], &nodes[j]);
+                        if cached {
+                            ring[i % RING][j - i - 1] = c;
+                        }
+                        c
+                    };
+                    if c < best || (c == best && tie_prefers(i, j, partner)) {
+                        (best, partner) = (c, j);
+                    }
+                }
+                nearest[i] = partner as u32;
+            }
         }
         // Mutual best pairs merge into the slot of the lower index, and the
         // list closes up behind them in the same pass (curve order kept:
@@ -536,36 +549,106 @@ fn ploc<B: BoundingVolume, P: Primitive>(
                 if j < i {
                     continue; // merged at `j`
                 }
-                let (l, r) = (active[i], active[j]);
-                clusters[next as usize] = Cluster {
-                    bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
-                    left: l,
-                    right: r,
+                let (l, r) = (nodes[i], nodes[j]);
+                insert -= 2;
+                nodes[insert] = l;
+                nodes[insert + 1] = r;
+                nodes[w] = Node {
+                    bv: l.bv.merge(&r.bv),
+                    first: insert as u32,
+                    count: 0,
                 };
-                active[w] = next;
-                next += 1;
+                height[w] = height[i].max(height[j]) + 1;
             } else {
-                active[w] = active[i];
+                nodes[w] = nodes[i];
+                height[w] = height[i];
             }
             w += 1;
         }
         if w == k {
             // Cannot happen with a strict order of pair costs, but never loop
             // forever: merge the first two clusters.
-            let (l, r) = (active[0], active[1]);
-            clusters[next as usize] = Cluster {
-                bv: clusters[l as usize].bv.merge(&clusters[r as usize].bv),
-                left: l,
-                right: r,
+            let (l, r) = (nodes[0], nodes[1]);
+            insert -= 2;
+            nodes[insert] = l;
+            nodes[insert + 1] = r;
+            nodes[0] = Node {
+                bv: l.bv.merge(&r.bv),
+                first: insert as u32,
+                count: 0,
             };
-            active[0] = next;
-            next += 1;
-            active.copy_within(2..k, 1);
+            height[0] = height[0].max(height[1]) + 1;
+            nodes.copy_within(2..k, 1);
+            height.copy_within(2..k, 1);
             w = k - 1;
         }
         k = w;
     }
-    active[0]
+    debug_assert_eq!(insert, 1);
+    height[0]
+}
+
+/// The keys of `prims` sorted along a Morton curve over the box of their
+/// centres, ties by index: each key holds its 30-bit code above the
+/// primitive's index. A stable radix sort on the code's four bytes (one
+/// counting pass for all four, 4 KiB of counters on the stack; a digit that
+/// is the same for every key is skipped) ping-pongs between the two halves
+/// of `keys` (`2n`); returns the half holding the result. (Three 10-bit
+/// digits measured 2% faster with 12 KiB of counters: too much stack for a
+/// microcontroller.)
+fn morton_order<'k, P: Primitive>(prims: &[P], centres: &Aabb, keys: &'k mut [u64]) -> &'k [u64] {
+    const BITS: u32 = 8;
+    const DIGITS: usize = 1 << BITS;
+    const PASSES: usize = 30usize.div_ceil(BITS as usize);
+    let n = prims.len();
+    let extent = centres.extent();
+    let (keys, spare) = keys.split_at_mut(n);
+    let mut count = [[0u32; DIGITS]; PASSES];
+    let digit =
+        |key: u64, pass: usize| ((key >> (32 + BITS * pass as u32)) as usize) & (DIGITS - 1);
+    for (i, p) in prims.iter().enumerate() {
+        let c = p.bounds().center();
+        let mut q = [0u32; 3];
+        for k in 0..3 {
+            let t = if extent[k] > 0.0 {
+                (c[k] - centres.min[k]) / extent[k]
+            } else {
+                0.0
+            };
+            q[k] = (t.clamp(0.0, 1.0) * 1023.0) as u32;
+        }
+        let key = (u64::from(morton3(q[0], q[1], q[2])) << 32) | i as u64;
+        keys[i] = key;
+        for (pass, count) in count.iter_mut().enumerate() {
+            count[digit(key, pass)] += 1;
+        }
+    }
+    let mut sorted_in_keys = true;
+    for (pass, start) in count.iter_mut().enumerate() {
+        if start.iter().any(|&c| c as usize == n) {
+            continue;
+        }
+        let (from, to) = if sorted_in_keys {
+            (&*keys, &mut *spare)
+        } else {
+            (&*spare, &mut *keys)
+        };
+        let mut sum = 0;
+        for c in start.iter_mut() {
+            (*c, sum) = (sum, sum + *c);
+        }
+        for &key in from {
+            let d = digit(key, pass);
+            to[start[d] as usize] = key;
+            start[d] += 1;
+        }
+        sorted_in_keys = !sorted_in_keys;
+    }
+    if sorted_in_keys {
+        keys
+    } else {
+        spare
+    }
 }
 
 /// The widest search window whose pair costs are cached (`RING * RING`

@@ -317,3 +317,61 @@ fn trees_from_bytes_with_child_indices_out_of_range_are_refused() {
         );
     }
 }
+
+/// The first bad primitive is named, whichever way it is bad and whatever
+/// comes after it: the builders check the whole slice in one pass without
+/// stopping, then look the culprit up again.
+#[test]
+fn the_first_bad_primitive_is_the_one_named() {
+    use bvhkit::builders::{BottomUp, Collapse, Method};
+    use bvhkit_std::OwnedBvh;
+    let ok = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+    let far = Triangle::new(Vec3::ZERO, Vec3::X * 1e33, Vec3::Y);
+    let mut corners = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    let mut cases = Vec::new();
+    // Every coordinate of every corner, each non-finite value.
+    for corner in 0..3 {
+        for axis in 0..3 {
+            for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+                corners[corner][axis] = bad;
+                let t = Triangle::new(corners[0], corners[1], corners[2]);
+                assert!(!bvhkit::Primitive::is_finite(&t), "{t:?}");
+                cases.push((
+                    vec![ok, ok, t, far, ok],
+                    Error::NonFiniteCoordinate { primitive: 2 },
+                ));
+                corners = [Vec3::ZERO, Vec3::X, Vec3::Y];
+            }
+        }
+    }
+    let nan = Triangle::new(Vec3::NAN, Vec3::X, Vec3::Y);
+    cases.push((
+        vec![ok, far, nan, ok],
+        Error::CoordinateOutOfRange { primitive: 1 },
+    ));
+    // The largest finite coordinates are finite, and too far.
+    let max = Triangle::new(Vec3::splat(f32::MAX), Vec3::splat(-f32::MAX), Vec3::ZERO);
+    assert!(bvhkit::Primitive::is_finite(&max));
+    cases.push((
+        vec![ok, ok, ok, max],
+        Error::CoordinateOutOfRange { primitive: 3 },
+    ));
+    let ploc = BottomUp {
+        method: Method::Ploc { radius: 1 },
+        collapse: Collapse::None,
+        ..BottomUp::default()
+    };
+    for (tris, want) in cases {
+        assert_eq!(
+            OwnedBvh::<Aabb>::build(&TopDown::sah(), &tris).err(),
+            Some(want)
+        );
+        for cfg in [BottomUp::default(), ploc] {
+            assert_eq!(
+                OwnedBvh::<Aabb>::build_bottom_up(&cfg, &tris).err(),
+                Some(want),
+                "{cfg:?}"
+            );
+        }
+    }
+}

@@ -431,3 +431,78 @@ fn ploc_equals_the_plain_algorithm() {
         }
     }
 }
+
+/// PLOC without a collapse builds straight into the node buffer and needs
+/// no cluster scratch: the same tree as with it, except that a tree too
+/// deep to traverse is then refused (there is nowhere to rebuild it), while
+/// `OwnedBvh` retries with the clusters and limits the depth.
+#[test]
+fn ploc_without_a_collapse_needs_no_clusters() {
+    use bvhkit::builders::{BottomUpScratch, Cluster};
+    let build = |cfg: &BottomUp, prims: &[Triangle], clusters: usize| {
+        let n = prims.len();
+        let (_, nw, nk) = BottomUp::scratch_len(n);
+        let mut clusters = vec![Cluster::<Aabb>::EMPTY; clusters];
+        let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+        let mut scratch = BottomUpScratch {
+            clusters: &mut clusters,
+            work: &mut work,
+            keys: &mut keys,
+        };
+        let mut nodes = vec![bvhkit::Node::<Aabb>::EMPTY; bvhkit::max_nodes(n)];
+        let mut idx = vec![0u32; n];
+        cfg.build(prims, &mut nodes, &mut idx, &mut scratch)
+            .map(|t| {
+                (
+                    t.nodes().to_vec(),
+                    t.indices().to_vec(),
+                    t.depth(),
+                    t.build_report(),
+                )
+            })
+    };
+    let cloud = bvhkit_std::scene::rock(2, 3);
+    // Each merge is cheapest at the small end: a chain.
+    let chain: Vec<Triangle> = (0..200)
+        .map(|i| {
+            let x = 1e-12 * 1.5f32.powi(i);
+            let o = Vec3::new(x, 0.0, 0.0);
+            Triangle::new(o, o + Vec3::X * x * 0.1, o + Vec3::Y * x * 0.1)
+        })
+        .collect();
+    for radius in [1, 4] {
+        let lean = BottomUp {
+            method: Method::Ploc { radius },
+            collapse: Collapse::None,
+            ..BottomUp::default()
+        };
+        assert!(!lean.needs_clusters());
+        let nc = bvhkit::max_nodes(cloud.len());
+        assert_eq!(build(&lean, &cloud, 0), build(&lean, &cloud, nc));
+        // The chain is deeper than MAX_DEPTH as merged.
+        let refused = build(&lean, &chain, 0)
+            .map(|x| (x.2, x.3))
+            .expect_err("refused");
+        assert!(
+            matches!(refused, Error::StackOverflow { depth, capacity }
+                if depth > bvhkit::MAX_DEPTH && capacity == bvhkit::MAX_DEPTH),
+            "{refused:?}"
+        );
+        let (_, _, depth, report) = build(&lean, &chain, bvhkit::max_nodes(200)).unwrap();
+        assert!(depth <= bvhkit::MAX_DEPTH && report.depth_limited > 0);
+        let owned = bvhkit_std::OwnedBvh::<Aabb>::build_bottom_up(&lean, &chain).unwrap();
+        assert_eq!(owned.view().depth(), depth);
+        assert_eq!(owned.view().build_report(), report);
+    }
+    // A collapse, or the exhaustive method, needs them all.
+    for cfg in [
+        BottomUp::default(),
+        BottomUp::exhaustive(MergeMetric::SurfaceArea),
+    ] {
+        assert!(cfg.needs_clusters());
+        assert!(matches!(
+            build(&cfg, &cloud[..50], 10),
+            Err(Error::InvalidConfig(_))
+        ));
+    }
+}
