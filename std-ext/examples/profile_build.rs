@@ -3,15 +3,15 @@
 //! default leaf collapse, or none with `COLLAPSE=none`), in the same caller
 //! buffers each time; add `OWNED=1` to build through
 //! `OwnedBvh::build_bottom_up` (fresh buffers and kept leaf bounds, as the
-//! peer benchmark does) from the triangles' boxes, and `MESH=path` to build
-//! a mesh file instead of the rock.
+//! peer benchmark does) from the triangles' boxes. `MESH=path` builds a
+//! mesh file instead of the rock.
 use bvhkit::builders::{BottomUp, BottomUpScratch, Cluster, Collapse, Method, PrimitiveRef};
 use bvhkit::{Aabb, Node, Primitive, TopDown};
 fn main() {
     if let Some(radius) = std::env::var("PLOC").ok().and_then(|v| v.parse().ok()) {
         return ploc(radius);
     }
-    let tris = bvhkit_std::scene::rock(6, 1);
+    let tris = input();
     let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(tris.len())];
     let mut idx = vec![0u32; tris.len()];
     let mut cache = vec![PrimitiveRef::EMPTY; tris.len()];
@@ -57,11 +57,16 @@ fn main() {
     );
 }
 
-fn ploc(radius: u32) {
-    let tris = match std::env::var("MESH") {
+/// The rock, or the mesh file `MESH` names.
+fn input() -> Vec<bvhkit::Triangle> {
+    match std::env::var("MESH") {
         Ok(path) => bvhkit_std::mesh::load(path.as_ref()).expect("MESH loads"),
         Err(_) => bvhkit_std::scene::rock(6, 1),
-    };
+    }
+}
+
+fn ploc(radius: u32) {
+    let tris = input();
     let n = tris.len();
     let builder = BottomUp {
         method: Method::Ploc { radius },
