@@ -894,8 +894,9 @@ mod tests {
         assert!(!run.contains("WRONG"));
         // What "Reading it" says, on every mesh of the targets table: SAH
         // below parry3d's; build and pairs below 1x parry3d but above the
-        // 0.33x target; the fastest build above obvhs's; default rays below
-        // CWBVH; quantized bytes below CWBVH's.
+        // 0.33x target; the fastest build below obvhs's from 20,000
+        // triangles, above it on the elephant; default rays below CWBVH;
+        // quantized bytes below CWBVH's.
         let targets: Vec<Vec<f64>> = run
             .lines()
             .skip_while(|l| !l.starts_with("#### Targets"))
@@ -921,13 +922,13 @@ mod tests {
             };
             // "faster than parry3d's binned builder on the meshes of 20,000
             // triangles and more" (below that, within the noise).
-            let build_ok = if tris >= 19_000.0 {
-                build < 1.0
+            let (build_ok, fastest_ok) = if tris >= 19_000.0 {
+                (build < 1.0, fastest < 1.0)
             } else {
-                build < 1.25
+                (build < 1.25, fastest > 1.0)
             };
             assert!(
-                sah < 1.0 && build_ok && build > 0.33 && fastest > 1.0,
+                sah < 1.0 && build_ok && build > 0.33 && fastest_ok,
                 "{r:?}"
             );
             assert!(
@@ -938,6 +939,7 @@ mod tests {
         let chapter = include_str!("src/performance.md");
         assert!(chapter.contains("not yet three\n  times faster"));
         assert!(chapter.contains("on the meshes of 20,000 triangles and more"));
+        assert!(chapter.contains("The fastest builder beats obvhs's `fastest_build` on the meshes of\n  20,000 triangles and more"));
     }
 
     /// The top-down chapter's scaling table is a recorded run of the
