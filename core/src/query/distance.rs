@@ -19,7 +19,7 @@ use crate::narrow::triangles_intersect;
 use crate::primitive::Triangle;
 use crate::transform::Rigid;
 use crate::tree::hierarchy::{check_query, DFS_STACK};
-use crate::tree::{Content, Hierarchy};
+use crate::tree::{Content, Hierarchy, Kids};
 use crate::Error;
 #[cfg(feature = "sphere")]
 use crate::Sphere;
@@ -465,22 +465,20 @@ where
                     // Nearest child pair on top of the stack: pushed last.
                     let mut next = [(0.0f64, 0u32, 0u32); crate::tree::MAX_CHILDREN];
                     let mut len = 0;
-                    if open_a(&ca, &cb, &ba, &bb) {
-                        let Content::Inner(kids) = ca else {
-                            unreachable!()
-                        };
-                        for &c in kids.as_slice() {
-                            next[len] = (lower_bound(&a.bv(c).aabb(), &bb), c, nb);
-                            len += 1;
+                    match open(ca, cb, &ba, &bb) {
+                        Some(Open::A(kids)) => {
+                            for &c in kids.as_slice() {
+                                next[len] = (lower_bound(&a.bv(c).aabb(), &bb), c, nb);
+                                len += 1;
+                            }
                         }
-                    } else {
-                        let Content::Inner(kids) = cb else {
-                            unreachable!()
-                        };
-                        for &c in kids.as_slice() {
-                            next[len] = (lower_bound(&ba, &self.b_box(c)), na, c);
-                            len += 1;
+                        Some(Open::B(kids)) => {
+                            for &c in kids.as_slice() {
+                                next[len] = (lower_bound(&ba, &self.b_box(c)), na, c);
+                                len += 1;
+                            }
                         }
+                        None => {} // two leaves: measured above
                     }
                     self.tally.bv_tests(len as u32);
                     let next = &mut next[..len];
@@ -536,20 +534,18 @@ where
                     }
                 }
                 (ca, cb) => {
-                    if open_a(&ca, &cb, &ba, &bb) {
-                        let Content::Inner(kids) = ca else {
-                            unreachable!()
-                        };
-                        for &c in kids.as_slice().iter().rev() {
-                            stack.push((c, nb))?;
+                    match open(ca, cb, &ba, &bb) {
+                        Some(Open::A(kids)) => {
+                            for &c in kids.as_slice().iter().rev() {
+                                stack.push((c, nb))?;
+                            }
                         }
-                    } else {
-                        let Content::Inner(kids) = cb else {
-                            unreachable!()
-                        };
-                        for &c in kids.as_slice().iter().rev() {
-                            stack.push((na, c))?;
+                        Some(Open::B(kids)) => {
+                            for &c in kids.as_slice().iter().rev() {
+                                stack.push((na, c))?;
+                            }
                         }
+                        None => {} // two leaves: measured above
                     }
                 }
             }
@@ -563,13 +559,25 @@ where
     }
 }
 
+/// The node of a pair a walk opens: A's or B's, with its children.
+enum Open {
+    A(Kids),
+    B(Kids),
+}
+
 /// The descent rule of both walks: open the inner node, and of two inner
-/// nodes the larger box (by surface area), so the boxes shrink evenly.
-fn open_a(ca: &Content<'_>, cb: &Content<'_>, ba: &Aabb, bb: &Aabb) -> bool {
+/// nodes the larger box (by surface area, A's on a tie), so the boxes
+/// shrink evenly; two leaves open nothing.
+fn open(ca: Content<'_>, cb: Content<'_>, ba: &Aabb, bb: &Aabb) -> Option<Open> {
     match (ca, cb) {
-        (Content::Inner(_), Content::Leaf(_)) => true,
-        (Content::Leaf(_), _) => false,
-        _ => ba.half_area() >= bb.half_area(),
+        (Content::Leaf(_), Content::Leaf(_)) => None,
+        (Content::Inner(kids), Content::Leaf(_)) => Some(Open::A(kids)),
+        (Content::Leaf(_), Content::Inner(kids)) => Some(Open::B(kids)),
+        (Content::Inner(ka), Content::Inner(kb)) => Some(if ba.half_area() >= bb.half_area() {
+            Open::A(ka)
+        } else {
+            Open::B(kb)
+        }),
     }
 }
 
