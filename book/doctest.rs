@@ -927,10 +927,7 @@ mod tests {
             } else {
                 (build < 1.25, fastest > 1.0)
             };
-            assert!(
-                sah < 1.0 && build_ok && build > 0.33 && fastest_ok,
-                "{r:?}"
-            );
+            assert!(sah < 1.0 && build_ok && build > 0.33 && fastest_ok, "{r:?}");
             assert!(
                 pairs < 1.0 && pairs > 0.33 && rays < 1.0 && bytes < 1.0,
                 "{r:?}"
