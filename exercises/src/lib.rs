@@ -686,6 +686,32 @@ pub trait Exercises {
     /// grader gives. Ends are compared within 1e-9 times the largest
     /// coordinate of the six corners (at least 1).
     fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]>;
+
+    /// Exercise 45a: how deep two solid boxes overlap. Return
+    /// `(normal, depth)`: moving `b` by `normal * depth` leaves the boxes
+    /// touching, and no shorter move separates them. Compute in `f64` from
+    /// the `f32` corners. On each axis `k`, `b` can leave upwards, by
+    /// `a.max[k] - b.min[k]` along `+k`, or downwards, by
+    /// `b.max[k] - a.min[k]` along `-k`; the answer is the smallest of these
+    /// six moves, its normal the unit axis with that sign (so it points from
+    /// `a` towards `b`). Ties go to the lowest axis (x, then y, then z), and
+    /// on one axis to `+` (the upward move). `None` when the boxes do not
+    /// overlap (some move is negative); boxes that only touch overlap, with
+    /// depth 0. Flat boxes and points (`min == max` on some axis) are boxes
+    /// like any other; [`Aabb::EMPTY`] overlaps nothing. The grader gives no
+    /// other box with `min > max`. Normals are compared within 1e-9, depths
+    /// within 1e-9 times the largest coordinate (at least 1).
+    fn box_penetration(&self, a: &Aabb, b: &Aabb) -> Option<(DVec3, f64)>;
+    /// Exercise 45b: how deep two solid spheres overlap, as in 45a: moving
+    /// `b` by `normal * depth` leaves them touching. Compute in `f64`: with
+    /// `d = b.center - a.center` and the distance `|d|`, the depth is
+    /// `a.radius + b.radius - |d|` and the normal is `d / |d|`, a unit
+    /// vector from `a`'s centre towards `b`'s; `+x` when the centres
+    /// coincide. `None` when they do not overlap (a negative depth), and
+    /// when either radius is negative ([`Sphere::EMPTY`]); spheres that only
+    /// touch give depth 0, and a radius of 0 is a point. Compared as in 45a
+    /// (the largest coordinate or radius, at least 1).
+    fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

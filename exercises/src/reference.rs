@@ -4,7 +4,7 @@ use crate::{AxisRule, Exercises, NodeStep, PointRule, TreeMeasures};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch, NULL};
 use bvhkit::glam::{DVec3, Vec3};
 use bvhkit::layout::{Wide, WideNode};
-use bvhkit::narrow::{triangle_contact, Contact};
+use bvhkit::narrow::{triangle_contact, Contact, Penetrate};
 use bvhkit::query::{PairDistance, Ray, RayTarget, SelfPairs};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, CostModel, Counts, Decision, Descent, Dop14, Hierarchy, Node, Obb,
@@ -1059,6 +1059,15 @@ impl Exercises for Reference {
                 panic!("exercise 44 is about triangles in two planes; these lie in one")
             }
         }
+    }
+
+    fn box_penetration(&self, a: &Aabb, b: &Aabb) -> Option<(DVec3, f64)> {
+        // The library's contact, without its point.
+        a.penetration(b).map(|p| (p.normal, p.depth))
+    }
+
+    fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)> {
+        a.penetration(b).map(|p| (p.normal, p.depth))
     }
 }
 

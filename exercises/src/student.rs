@@ -595,4 +595,26 @@ impl Exercises for Student {
         let _ = (t1, t2);
         todo!("exercise 44")
     }
+
+    fn box_penetration(&self, a: &Aabb, b: &Aabb) -> Option<(DVec3, f64)> {
+        // Hint: in `f64` (`a.min.as_dvec3()` and so on), for each axis k in
+        // order x, y, z: `up = a.max[k] - b.min[k]` (move b along +k) and
+        // `down = b.max[k] - a.min[k]` (along -k). Either negative: `None`,
+        // the boxes are apart. Keep the smallest of the six moves, replacing
+        // the best only when a move is strictly smaller, trying up before
+        // down: then ties go to the lowest axis, then to +. Not the width of
+        // the overlap, `min(a.max, b.max) - max(a.min, b.min)`: when one box
+        // spans the other on an axis, that is shorter than the way out.
+        let _ = (a, b);
+        todo!("exercise 45a")
+    }
+
+    fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)> {
+        // Hint: a negative radius first (`None`). Then, in `f64`,
+        // `d = b.center - a.center`, `len = d.length()`, depth
+        // `ra + rb - len`: negative means apart, zero touching. The normal
+        // is `d / len`, or `DVec3::X` when `len` is 0.
+        let _ = (a, b);
+        todo!("exercise 45b")
+    }
 }

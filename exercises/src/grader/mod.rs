@@ -50,6 +50,7 @@ mod ex41_box_triangle;
 mod ex42_self_pairs;
 mod ex43_closest_pair;
 mod ex44_crossing_segment;
+mod ex45_penetration;
 #[cfg(test)]
 mod wrong;
 
@@ -78,7 +79,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 44] = [
+pub const EXERCISES: [(u32, &str); 45] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -138,6 +139,7 @@ pub const EXERCISES: [(u32, &str); 44] = [
     ),
     (43, "the closest pair of two trees: branch and bound"),
     (44, "where two triangles cross: the shared segment"),
+    (45, "how deep two boxes or two spheres overlap"),
 ];
 
 /// A score for one exercise.
@@ -202,6 +204,7 @@ pub fn checks() -> Vec<Check> {
         ex42_self_pairs::checks(),
         ex43_closest_pair::checks(),
         ex44_crossing_segment::checks(),
+        ex45_penetration::checks(),
     ]
     .concat()
 }
@@ -415,7 +418,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 496/496 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 506/506 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -48,6 +48,7 @@ use super::ex41_box_triangle;
 use super::ex42_self_pairs;
 use super::ex43_closest_pair;
 use super::ex44_crossing_segment;
+use super::ex45_penetration;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -109,6 +110,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (42, ex42_self_pairs::wrong::COUNT),
         (43, ex43_closest_pair::wrong::COUNT),
         (44, ex44_crossing_segment::wrong::COUNT),
+        (45, ex45_penetration::wrong::COUNT),
     ]
 }
 
@@ -357,5 +359,11 @@ impl Exercises for Wrong {
     }
     fn crossing_segment(&self, t1: &Triangle, t2: &Triangle) -> Option<[DVec3; 2]> {
         ex44_crossing_segment::wrong::crossing_segment(self.k(44), t1, t2)
+    }
+    fn box_penetration(&self, a: &Aabb, b: &Aabb) -> Option<(DVec3, f64)> {
+        ex45_penetration::wrong::box_penetration(self.k(45), a, b)
+    }
+    fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)> {
+        ex45_penetration::wrong::sphere_penetration(self.k(45), a, b)
     }
 }
