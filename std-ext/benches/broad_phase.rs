@@ -7,8 +7,8 @@
 //!
 //! Run: `cargo bench -p bvhkit-std --bench broad_phase`
 
-use bvhkit::builders::{DynNode, DynamicConfig};
-use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
+use bvhkit::builders::DynamicConfig;
+use bvhkit::collision::PairTracker;
 use bvhkit::query::SelfPairs;
 use bvhkit::{Aabb, Node, TopDown};
 use bvhkit_std::scene::Drift;
@@ -22,19 +22,8 @@ fn bench(c: &mut Criterion) {
         for every in [1usize, 10] {
             let label = format!("{n} boxes, 1 in {every} moving");
             let mut drift = Drift::new(n);
-            let m = 16 * n;
-            let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
-            let (mut slots, mut boxes, mut moved) =
-                (vec![Slot::EMPTY; n], vec![Aabb::EMPTY; n], vec![0u32; n]);
-            let (mut pairs, mut next) = (vec![(0, 0); m], vec![(0, 0); m]);
-            let storage = TrackerStorage {
-                nodes: &mut nodes,
-                slots: &mut slots,
-                boxes: &mut boxes,
-                moved: &mut moved,
-                pairs: &mut pairs,
-                next: &mut next,
-            };
+            let mut buffers = bvhkit_std::TrackerBuffers::new(n, 16 * n);
+            let storage = buffers.storage();
             let config = DynamicConfig {
                 margin: 0.1,
                 ..Default::default()

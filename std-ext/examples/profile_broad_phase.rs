@@ -1,9 +1,8 @@
 //! Profiles one broad-phase workload: 100 000 boxes drifting, every box (or
 //! one in ten, with `--tenth`) moving each step; times the updates and the
 //! steps separately. `cargo run --release -p bvhkit-std --example profile_broad_phase`
-use bvhkit::builders::{DynNode, DynamicConfig};
-use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
-use bvhkit::Aabb;
+use bvhkit::builders::DynamicConfig;
+use bvhkit::collision::PairTracker;
 use std::time::{Duration, Instant};
 
 fn main() {
@@ -15,19 +14,8 @@ fn main() {
     let n = 100_000usize;
     // The benchmarks' scene: boxes drifting in a cube, bouncing off its walls.
     let mut drift = bvhkit_std::scene::Drift::new(n);
-    let m = 16 * n;
-    let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
-    let (mut slots, mut boxes, mut moved) =
-        (vec![Slot::EMPTY; n], vec![Aabb::EMPTY; n], vec![0u32; n]);
-    let (mut pairs, mut nxt) = (vec![(0, 0); m], vec![(0, 0); m]);
-    let storage = TrackerStorage {
-        nodes: &mut nodes,
-        slots: &mut slots,
-        boxes: &mut boxes,
-        moved: &mut moved,
-        pairs: &mut pairs,
-        next: &mut nxt,
-    };
+    let mut buffers = bvhkit_std::TrackerBuffers::new(n, 16 * n);
+    let storage = buffers.storage();
     let mut world = PairTracker::new(
         storage,
         DynamicConfig {

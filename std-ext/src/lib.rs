@@ -270,6 +270,61 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     }
 }
 
+/// Owned storage for a [`PairTracker`](bvhkit::collision::PairTracker):
+/// the caller storage the core asks for, sized once, for programs that
+/// have a heap.
+///
+/// ```
+/// use bvhkit::builders::DynamicConfig;
+/// use bvhkit::collision::PairTracker;
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::Aabb;
+/// let mut buffers = bvhkit_std::TrackerBuffers::new(100, 1_000);
+/// let mut world = PairTracker::new(buffers.storage(), DynamicConfig::default())?;
+/// world.insert(0, &Aabb::new(Vec3::ZERO, Vec3::ONE))?;
+/// world.insert(1, &Aabb::new(Vec3::splat(0.5), Vec3::splat(2.0)))?;
+/// let mut begun = 0;
+/// world.step(|_| begun += 1)?;
+/// assert_eq!(begun, 1);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct TrackerBuffers {
+    nodes: Vec<bvhkit::builders::DynNode<Aabb>>,
+    slots: Vec<bvhkit::collision::Slot>,
+    boxes: Vec<Aabb>,
+    moved: Vec<u32>,
+    pairs: Vec<(u32, u32)>,
+    next: Vec<(u32, u32)>,
+}
+
+impl TrackerBuffers {
+    /// Room for object ids below `objects` and `pairs` overlapping pairs
+    /// at a time.
+    pub fn new(objects: usize, pairs: usize) -> Self {
+        TrackerBuffers {
+            nodes: vec![bvhkit::builders::DynNode::EMPTY; bvhkit::max_nodes(objects)],
+            slots: vec![bvhkit::collision::Slot::EMPTY; objects],
+            boxes: vec![Aabb::EMPTY; objects],
+            moved: vec![0; objects],
+            pairs: vec![(0, 0); pairs],
+            next: vec![(0, 0); pairs],
+        }
+    }
+
+    /// The buffers as the tracker takes them.
+    pub fn storage(&mut self) -> bvhkit::collision::TrackerStorage<'_> {
+        bvhkit::collision::TrackerStorage {
+            nodes: &mut self.nodes,
+            slots: &mut self.slots,
+            boxes: &mut self.boxes,
+            moved: &mut self.moved,
+            pairs: &mut self.pairs,
+            next: &mut self.next,
+        }
+    }
+}
+
 /// Runs `f` `runs` times and returns the median duration and the last result.
 pub fn median_time<R>(runs: usize, mut f: impl FnMut() -> R) -> (Duration, R) {
     let mut times = Vec::with_capacity(runs.max(1));

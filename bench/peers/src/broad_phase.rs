@@ -10,8 +10,8 @@
 //! step must be the same for all three; it is checked.
 
 use crate::common::boxes_overlap;
-use bvhkit::builders::{DynNode, DynamicConfig};
-use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
+use bvhkit::builders::DynamicConfig;
+use bvhkit::collision::PairTracker;
 use bvhkit::query::SelfPairs;
 use bvhkit::{Aabb, Node, TopDown};
 use bvhkit_std::scene::Drift;
@@ -64,19 +64,8 @@ fn timed(steps: usize, mut step: impl FnMut(usize) -> usize) -> (f64, Vec<usize>
 
 fn tracker(n: usize, every: usize, steps: usize) -> (f64, Vec<usize>) {
     let mut drift = Drift::new(n);
-    let m = 16 * n;
-    let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * n - 1];
-    let (mut slots, mut boxes, mut moved) =
-        (vec![Slot::EMPTY; n], vec![Aabb::EMPTY; n], vec![0u32; n]);
-    let (mut pairs, mut next) = (vec![(0, 0); m], vec![(0, 0); m]);
-    let storage = TrackerStorage {
-        nodes: &mut nodes,
-        slots: &mut slots,
-        boxes: &mut boxes,
-        moved: &mut moved,
-        pairs: &mut pairs,
-        next: &mut next,
-    };
+    let mut buffers = bvhkit_std::TrackerBuffers::new(n, 16 * n);
+    let storage = buffers.storage();
     let config = DynamicConfig {
         margin: MARGIN,
         ..Default::default()

@@ -3,8 +3,8 @@
 //! brute force over the objects present, and its events are exactly the
 //! difference from the previous list.
 
-use bvhkit::builders::{DynNode, DynamicConfig};
-use bvhkit::collision::{PairEvent, PairTracker, Slot, TrackerStorage};
+use bvhkit::builders::DynamicConfig;
+use bvhkit::collision::{PairEvent, PairTracker};
 use bvhkit::glam::Vec3;
 use bvhkit::{brute_force, Aabb, Error, Hierarchy, Query};
 use bvhkit_tests::*;
@@ -31,39 +31,6 @@ fn op() -> impl Strategy<Value = Op> {
     ]
 }
 
-struct Storage {
-    nodes: Vec<DynNode<Aabb>>,
-    slots: Vec<Slot>,
-    boxes: Vec<Aabb>,
-    moved: Vec<u32>,
-    pairs: Vec<(u32, u32)>,
-    next: Vec<(u32, u32)>,
-}
-
-impl Storage {
-    fn new(n: usize, m: usize) -> Self {
-        Storage {
-            nodes: vec![DynNode::EMPTY; 2 * n - 1],
-            slots: vec![Slot::EMPTY; n],
-            boxes: vec![Aabb::EMPTY; n],
-            moved: vec![0; n],
-            pairs: vec![(0, 0); m],
-            next: vec![(0, 0); m],
-        }
-    }
-
-    fn view(&mut self) -> TrackerStorage<'_> {
-        TrackerStorage {
-            nodes: &mut self.nodes,
-            slots: &mut self.slots,
-            boxes: &mut self.boxes,
-            moved: &mut self.moved,
-            pairs: &mut self.pairs,
-            next: &mut self.next,
-        }
-    }
-}
-
 /// The pairs brute force finds among the objects present (`present[i]`
 /// holds object `i`'s box).
 fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
@@ -84,12 +51,12 @@ fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
 /// `f32` spacing reaches 1/16 at 1e6: nudges round, boxes touch exactly).
 fn run(ops: &[Op], margin: f32, pair_room: usize, origin: Vec3) -> Result<(), TestCaseError> {
     let n = 40;
-    let mut storage = Storage::new(n, pair_room);
+    let mut storage = bvhkit_std::TrackerBuffers::new(n, pair_room);
     let config = DynamicConfig {
         margin,
         ..DynamicConfig::default()
     };
-    let mut world = PairTracker::new(storage.view(), config).unwrap();
+    let mut world = PairTracker::new(storage.storage(), config).unwrap();
     let mut present: Vec<Option<Aabb>> = vec![None; n];
     let mut before: BTreeSet<(u32, u32)> = BTreeSet::new();
     for op in ops {
@@ -200,8 +167,8 @@ proptest! {
 
 #[test]
 fn bad_ids_boxes_and_storage_are_errors() {
-    let mut s = Storage::new(4, 6);
-    let mut world = PairTracker::new(s.view(), DynamicConfig::default()).unwrap();
+    let mut s = bvhkit_std::TrackerBuffers::new(4, 6);
+    let mut world = PairTracker::new(s.storage(), DynamicConfig::default()).unwrap();
     let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
     assert!(world.insert(4, &unit).is_err()); // past the slots
     world.insert(1, &unit).unwrap();
@@ -225,14 +192,15 @@ fn bad_ids_boxes_and_storage_are_errors() {
     world.step(|e| events.push(e)).unwrap();
     assert_eq!(events, [PairEvent::Begin(1, 2)]);
     // Storage too small for the slots.
-    let mut s = Storage::new(4, 6);
-    s.moved.truncate(3);
-    assert!(PairTracker::new(s.view(), DynamicConfig::default()).is_err());
-    let mut s = Storage::new(4, 6);
-    s.next.truncate(2);
-    assert!(PairTracker::new(s.view(), DynamicConfig::default()).is_err());
+    let mut s = bvhkit_std::TrackerBuffers::new(4, 6);
+    let mut short = s.storage();
+    short.moved = &mut std::mem::take(&mut short.moved)[..3];
+    assert!(PairTracker::new(short, DynamicConfig::default()).is_err());
+    let mut short = s.storage();
+    short.next = &mut std::mem::take(&mut short.next)[..2];
+    assert!(PairTracker::new(short, DynamicConfig::default()).is_err());
     // An empty world steps to nothing.
-    let mut s = Storage::new(1, 0);
-    let mut empty = PairTracker::new(s.view(), DynamicConfig::default()).unwrap();
+    let mut s = bvhkit_std::TrackerBuffers::new(1, 0);
+    let mut empty = PairTracker::new(s.storage(), DynamicConfig::default()).unwrap();
     assert_eq!(empty.step(|_| panic!("no events")).unwrap().pairs, 0);
 }
