@@ -182,6 +182,17 @@ pub(crate) fn validate<P: Primitive>(prims: &[P]) -> Result<(), crate::Error> {
 /// primitive and the box around their boxes' centres (both empty for no
 /// primitives). Builders that need them save a pass over the input.
 pub(crate) fn validate_bounds<P: Primitive>(prims: &[P]) -> Result<(Aabb, Aabb), crate::Error> {
+    validate_bounds_each(prims, |_, _| {})
+}
+
+/// [`validate_bounds`], handing each primitive's box to `each` (with its
+/// index) on the way: a builder that keeps the boxes fills its cache in the
+/// same pass. On an error, what `each` was given is meaningless.
+#[inline(always)]
+pub(crate) fn validate_bounds_each<P: Primitive>(
+    prims: &[P],
+    mut each: impl FnMut(usize, &Aabb),
+) -> Result<(Aabb, Aabb), crate::Error> {
     use crate::Error;
     if prims.len() > crate::tree::MAX_PRIMITIVES {
         return Err(Error::IndexOverflow { count: prims.len() });
@@ -192,8 +203,9 @@ pub(crate) fn validate_bounds<P: Primitive>(prims: &[P]) -> Result<(Aabb, Aabb),
     let in_range =
         |p: &P, b: &Aabb| p.is_finite() & b.min.abs().max(b.max.abs()).cmple(limit).all();
     let (mut scene, mut centres, mut ok) = (Aabb::EMPTY, Aabb::EMPTY, true);
-    for p in prims {
+    for (i, p) in prims.iter().enumerate() {
         let b = p.bounds();
+        each(i, &b);
         ok &= in_range(p, &b);
         scene = scene.union(&b);
         centres.grow(b.center());

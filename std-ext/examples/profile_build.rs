@@ -1,5 +1,6 @@
 //! Builds the default rock repeatedly (for profilers): `cargo run --release -p bvhkit-std --example profile_build`.
-//! `PLOC=r` builds bottom-up with PLOC of radius `r` instead (with the
+//! `OWNED=1` builds through `OwnedBvh::build` (fresh buffers, kept leaf
+//! bounds: what the peer benchmark times). `PLOC=r` builds bottom-up with PLOC of radius `r` instead (with the
 //! default leaf collapse, or none with `COLLAPSE=none`), in the same caller
 //! buffers each time; add `OWNED=1` to build through
 //! `OwnedBvh::build_bottom_up` (fresh buffers and kept leaf bounds, as the
@@ -34,7 +35,12 @@ fn main() {
     let (mut times, mut total) = (Vec::with_capacity(reps), 0);
     for _ in 0..reps {
         let t = std::time::Instant::now();
-        total += if cached {
+        total += if std::env::var_os("OWNED").is_some() {
+            bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, &tris)
+                .unwrap()
+                .view()
+                .node_count()
+        } else if cached {
             cfg.build_cached(&tris, &mut nodes, &mut idx, &mut cache)
                 .unwrap()
                 .node_count()
@@ -49,6 +55,16 @@ fn main() {
         .view()
         .stats()
         .sah_cost;
+    let ob = bvhkit_std::OwnedBvh::<Aabb>::build(&cfg, &tris).unwrap();
+    eprintln!("{:?}", ob.view().build_report());
+    let st = ob.view().stats();
+    eprintln!(
+        "mean leaf depth {:.2} max {} leaves {} n {}",
+        st.mean_leaf_depth,
+        st.max_depth,
+        st.leaves,
+        tris.len()
+    );
     println!(
         "sah {sah:.3}, {} nodes, {:.2} ms min, {:.2} ms median per build",
         total / reps,

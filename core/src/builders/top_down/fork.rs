@@ -15,12 +15,11 @@
 //! and a second pass, forked the same way, copies the regions into the
 //! sequential order, adding to each link the distance its subtree moved.
 
-use super::partition::bounds_of;
 use super::source::Cached;
 use super::{containing_children, refit_to_contain_children, Task, TopDown};
 use crate::builders::{BuildReport, PrimitiveRef};
-use crate::bv::{Aabb, BoundingVolume};
-use crate::primitive::Primitive;
+use crate::bv::BoundingVolume;
+use crate::primitive::{validate_bounds, Primitive};
 use crate::tree::{max_nodes, Bvh, Node, MAX_PRIMITIVES};
 use crate::Error;
 
@@ -141,7 +140,7 @@ impl TopDown {
         B: BoundingVolume + Send + Sync,
         F: Fork,
     {
-        let n = self.prepare(prims, nodes.len(), indices.len())?;
+        let n = self.prepare(prims.len(), nodes.len(), indices.len())?;
         let grain = fork.grain().max(2);
         if n < grain {
             return self.build_cached(prims, nodes, indices, cache);
@@ -158,13 +157,23 @@ impl TopDown {
                 available: scratch.len(),
             });
         }
+        // The check's boxes are the root's, as in the sequential build.
+        let (bounds, centroids) = validate_bounds(prims)?;
         let items = &mut cache[..n];
         in_pieces(fork, grain, items, prims, 0, &|records, prims, first| {
             for (i, (slot, p)) in records.iter_mut().zip(prims).enumerate() {
                 *slot = PrimitiveRef::new(&p.bounds(), (first + i) as u32);
             }
         });
-        let root = root_task(fork, grain, items);
+        let root = Task {
+            node: 0,
+            start: 0,
+            end: n as u32,
+            depth: 0,
+            bounds,
+            centroids,
+            tight: true,
+        };
         let piece = Piece {
             builder: self,
             grain,
@@ -223,29 +232,6 @@ fn in_pieces<T: Send, U: Sync, F: Fork>(
     );
 }
 
-/// The root's task, its bounds gathered in pieces: unions are exact (a
-/// minimum and a maximum per coordinate), so any grouping gives the
-/// sequential bounds.
-fn root_task<F: Fork>(fork: &F, grain: usize, items: &[PrimitiveRef]) -> Task {
-    fn bounds<F: Fork>(fork: &F, grain: usize, items: &[PrimitiveRef]) -> (Aabb, Aabb) {
-        if items.len() < 2 * grain {
-            return bounds_of(&Cached, items);
-        }
-        let (a, b) = items.split_at(items.len() / 2);
-        let ((ab, ac), (bb, bc)) = fork.join(|| bounds(fork, grain, a), || bounds(fork, grain, b));
-        (ab.union(&bb), ac.union(&bc))
-    }
-    let (bounds, centroids) = bounds(fork, grain, items);
-    Task {
-        node: 0,
-        start: 0,
-        end: items.len() as u32,
-        depth: 0,
-        bounds,
-        centroids,
-    }
-}
-
 /// The forked driver's constants, shared by every piece.
 struct Piece<'c> {
     builder: &'c TopDown,
@@ -279,14 +265,16 @@ impl Piece<'_> {
             refit_to_contain_children(&mut region[..used]);
             return Ok((used, depth, report));
         }
-        let (bv, halves) = self.builder.step(&Cached, items, sweep, &task, &mut report);
+        let (bv, halves) = self
+            .builder
+            .step(&Cached, items, sweep, &mut task, &mut report);
         let Some(h) = halves else {
             region[0] = Node {
                 bv,
                 first: 0,
                 count: items.len() as u32,
             };
-            return Ok((1, task.depth, report));
+            return Ok((1, u32::from(task.depth), report));
         };
         let (l, r) = task.children(1, &h);
         let (root, regions) = region.split_at_mut(1);

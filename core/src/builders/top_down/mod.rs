@@ -34,7 +34,7 @@ pub use source::PrimitiveRef;
 use super::strategy::{AxisChoice, OnFailure, Partition, SplitPoint, Stop, MAX_BINS};
 use super::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
-use crate::primitive::{validate, Primitive};
+use crate::primitive::{validate_bounds, validate_bounds_each, Primitive};
 use crate::tree::{max_nodes, Bvh, Node, MAX_DEPTH};
 use crate::Error;
 use partition::bounds_of;
@@ -89,9 +89,14 @@ struct Task {
     node: u32,
     start: u32,
     end: u32,
-    depth: u32,
+    /// At most `MAX_DEPTH`: 16 bits keep the task, with `tight`, at 64
+    /// bytes (the driver's stack holds 33 of them).
+    depth: u16,
     bounds: Aabb,
+    /// A box containing the primitives' centroids: their own box when
+    /// `tight`, else the node's box (see [`Task::tightened`]).
     centroids: Aabb,
+    tight: bool,
 }
 
 /// Result of partitioning a range: the split position and both halves' bounds.
@@ -100,6 +105,8 @@ struct Halves {
     mid: usize,
     bounds: [Aabb; 2],
     centroids: [Aabb; 2],
+    /// Whether `centroids` are the centroids' own boxes.
+    tight: bool,
 }
 
 impl TopDown {
@@ -248,13 +255,14 @@ impl TopDown {
         nodes: &'a mut [Node<B>],
         indices: &'a mut [u32],
     ) -> Result<Bvh<'a, B>, Error> {
-        let n = self.prepare(prims, nodes.len(), indices.len())?;
+        let n = self.prepare(prims.len(), nodes.len(), indices.len())?;
+        let root = validate_bounds(prims)?;
         let (idx, scratch) = indices.split_at_mut(n);
         for (i, slot) in idx.iter_mut().enumerate() {
             *slot = i as u32;
         }
         let src = Indexed(prims);
-        let (used, depth, report) = self.run(&src, nodes, idx, scratch)?;
+        let (used, depth, report) = self.run(&src, nodes, idx, scratch, root)?;
         refit_to_contain_children(&mut nodes[..used]);
         let nodes: &'a [Node<B>] = nodes;
         let idx: &'a [u32] = idx;
@@ -289,7 +297,7 @@ impl TopDown {
         indices: &'a mut [u32],
         cache: &mut [PrimitiveRef],
     ) -> Result<Bvh<'a, B>, Error> {
-        let n = self.prepare(prims, nodes.len(), indices.len())?;
+        let n = self.prepare(prims.len(), nodes.len(), indices.len())?;
         if cache.len() < n {
             return Err(Error::IndexCapacity {
                 needed: n,
@@ -297,11 +305,15 @@ impl TopDown {
             });
         }
         let items = &mut cache[..n];
-        for (i, (slot, p)) in items.iter_mut().zip(prims).enumerate() {
-            *slot = PrimitiveRef::new(&p.bounds(), i as u32);
-        }
+        // The input check computes every box anyway: the cache is filled
+        // in the same pass.
+        let root = validate_bounds_each(prims, |i, b| {
+            if let Some(slot) = items.get_mut(i) {
+                *slot = PrimitiveRef::new(b, i as u32);
+            }
+        })?;
         // The index array is free until the end: it serves as sweep scratch.
-        let (used, depth, report) = self.run(&Cached, nodes, items, indices)?;
+        let (used, depth, report) = self.run(&Cached, nodes, items, indices, root)?;
         for (slot, item) in indices.iter_mut().zip(items.iter()) {
             *slot = item.index();
         }
@@ -312,16 +324,13 @@ impl TopDown {
         Ok(Bvh::from_built(&nodes[..used], &idx[..n], depth).with_build_report(report))
     }
 
-    /// Shared input checks; returns n.
-    fn prepare<P: Primitive>(
-        &self,
-        prims: &[P],
-        nodes: usize,
-        indices: usize,
-    ) -> Result<usize, Error> {
+    /// The checks of the configuration and the storage (the primitives are
+    /// checked by the caller, in its pass over them); returns n.
+    fn prepare(&self, n: usize, nodes: usize, indices: usize) -> Result<usize, Error> {
         self.check()?;
-        validate(prims)?;
-        let n = prims.len();
+        if n > crate::tree::MAX_PRIMITIVES {
+            return Err(Error::IndexOverflow { count: n });
+        }
         let needed = self.index_capacity(n);
         if indices < needed {
             return Err(Error::IndexCapacity {
@@ -338,13 +347,16 @@ impl TopDown {
         Ok(n)
     }
 
-    /// The skeleton: returns (nodes used, depth, what it did).
+    /// The skeleton: returns (nodes used, depth, what it did). `root` is
+    /// the box around every primitive's box and the box around their
+    /// centres, from the input check.
     fn run<S: Source, B: BoundingVolume>(
         &self,
         src: &S,
         nodes: &mut [Node<B>],
         idx: &mut [S::Item],
         scratch: &mut [u32],
+        (bounds, centroids): (Aabb, Aabb),
     ) -> Result<(usize, u32, BuildReport), Error> {
         let mut report = BuildReport {
             max_leaf_size: self.stop.max_leaf_size,
@@ -353,7 +365,15 @@ impl TopDown {
         if idx.is_empty() {
             return Ok((0, 0, report)); // the empty tree: no nodes at all
         }
-        let root = Task::root(src, idx);
+        let root = Task {
+            node: 0,
+            start: 0,
+            end: idx.len() as u32,
+            depth: 0,
+            bounds,
+            centroids,
+            tight: true,
+        };
         let (used, depth) = self.run_task(src, nodes, idx, scratch, root, &mut report)?;
         Ok((used, depth, report))
     }
@@ -365,13 +385,13 @@ impl TopDown {
         src: &S,
         range: &mut [S::Item],
         scratch: &mut [u32],
-        task: &Task,
+        task: &mut Task,
         report: &mut BuildReport,
     ) -> (B, Option<Halves>) {
         let bv = B::fit_boxes(&SourceBoxes { src, items: range }, &task.bounds);
         let count = range.len() as u32;
         let stop = count <= self.stop.max_leaf_size
-            || task.depth >= self.stop.max_depth
+            || u32::from(task.depth) >= self.stop.max_depth
             || (self.stop.min_volume > 0.0 && bv.cost_volume_scaled(1.0) < self.stop.min_volume);
         let halves = if stop {
             None
@@ -403,7 +423,7 @@ impl TopDown {
         let mut max_depth = 0u32;
         loop {
             let (s, e) = (task.start as usize, task.end as usize);
-            let (bv, halves) = self.step(src, &mut idx[s..e], scratch, &task, report);
+            let (bv, halves) = self.step(src, &mut idx[s..e], scratch, &mut task, report);
             match halves {
                 None => {
                     nodes[task.node as usize] = Node {
@@ -411,7 +431,7 @@ impl TopDown {
                         first: task.start,
                         count: (e - s) as u32,
                     };
-                    max_depth = max_depth.max(task.depth);
+                    max_depth = max_depth.max(u32::from(task.depth));
                     if top == 0 {
                         break;
                     }
@@ -459,16 +479,16 @@ impl TopDown {
 }
 
 impl Task {
-    /// The whole range, at depth 0 in node 0.
-    fn root<S: Source>(src: &S, idx: &[S::Item]) -> Task {
-        let (bounds, centroids) = bounds_of(src, idx);
-        Task {
-            node: 0,
-            start: 0,
-            end: idx.len() as u32,
-            depth: 0,
-            bounds,
-            centroids,
+    /// Replaces a box around the centroids by their own box, gathered in
+    /// one pass over `range` (in place: the driver's stack frame holds the
+    /// only copy of the task).
+    // Out of line: rare on the fast path, and its pass's locals stay off
+    // the driver's frame.
+    #[inline(never)]
+    fn tighten<S: Source>(&mut self, src: &S, range: &[S::Item]) {
+        if !self.tight {
+            self.centroids = bounds_of(src, range).1;
+            self.tight = true;
         }
     }
 
@@ -482,6 +502,7 @@ impl Task {
             depth: self.depth + 1,
             bounds: h.bounds[i],
             centroids: h.centroids[i],
+            tight: h.tight,
         };
         (child(0, self.start, mid), child(1, mid, self.end))
     }
@@ -559,6 +580,33 @@ mod feature_tests {
             let t = cfg.build(&prims, &mut nodes, &mut idx).unwrap();
             assert_eq!(t.primitive_count(), 40);
         }
+    }
+
+    /// Below the root, the bins span each node's box (the partition does
+    /// not gather the centroids' box). When that box is much larger than
+    /// the centroids' (one large triangle around a tight cluster), every
+    /// centroid falls in one bin: the split is planned again over the
+    /// centroids' own box, not handed to a fallback.
+    #[test]
+    fn bins_over_a_loose_box_are_retried_over_the_centroids() {
+        let tri = |o: Vec3, s: f32| Triangle::new(o, o + Vec3::X * s, o + Vec3::Y * s);
+        let mut prims = [tri(Vec3::ZERO, 0.0); 14];
+        // A triangle whose box centre is (50, 50, 0), around eight small
+        // ones within 0.1 of it ...
+        prims[0] = tri(Vec3::ZERO, 100.0);
+        for (i, p) in prims[1..9].iter_mut().enumerate() {
+            *p = tri(Vec3::new(50.0 + 0.01 * i as f32, 50.0, 0.0), 0.01);
+        }
+        // ... and five far away, which the root splits off.
+        for (i, p) in prims[9..].iter_mut().enumerate() {
+            *p = tri(Vec3::new(1000.0 + i as f32, 0.0, 0.0), 0.5);
+        }
+        let mut nodes = [Node::<Aabb>::ZERO; 27];
+        let mut idx = [0u32; 14];
+        let t = TopDown::sah().build(&prims, &mut nodes, &mut idx).unwrap();
+        assert_eq!(t.build_report().fallback_splits, 0);
+        assert_eq!(t.build_report().oversized_leaves, 0);
+        assert_eq!(t.primitive_count(), 14);
     }
 
     /// Other configurations build only with `strategies`; without it they

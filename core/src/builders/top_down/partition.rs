@@ -5,7 +5,7 @@ use super::source::{centroid, Source};
 use super::split_points::{even_bin, Plan};
 use super::Halves;
 use crate::bv::Aabb;
-use glam::{BVec3A, Vec3, Vec3A};
+use glam::Vec3;
 
 /// Node bounds and centroid bounds over an index range.
 pub(super) fn bounds_of<S: Source>(src: &S, idx: &[S::Item]) -> (Aabb, Aabb) {
@@ -33,12 +33,17 @@ pub(super) fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Ha
             // `even_bin(c, lo, scale, k) < boundary` without the conversion:
             // `boundary <= k - 1` is whole, so truncating first changes nothing.
             let edge = boundary as f32;
-            let (left, centroids) = partition_known(src, range, |c| (c - lo) * scale < edge, axis);
+            let left = partition_known(src, range, |c| (c - lo) * scale < edge, axis);
             debug_assert_eq!(left, mid, "the partition disagrees with the bins");
+            // The children's centroids are not gathered: each child's box
+            // contains them, and binning over the box instead of the
+            // centroids' box costs under 0.2% of SAH on real meshes, where
+            // gathering them cost a sixth of the build.
             Halves {
                 mid: left,
                 bounds,
-                centroids,
+                centroids: bounds,
+                tight: false,
             }
         }
         Plan::Axis {
@@ -65,49 +70,35 @@ pub(super) fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Ha
                 mid,
                 bounds: [lb, rb],
                 centroids: [lc, rc],
+                tight: true,
             }
         }
     }
 }
 
-/// Partitions when the children's boxes are known already (from the bins):
-/// only the centroid bounds are gathered. Branch-free (Lomuto's scheme: every
-/// element is swapped into place, and the left end advances by the test's
-/// result), because at the top of the tree the test is a coin toss that a
-/// branch predictor loses half the time. Returns the left count and the
-/// centroid bounds of both sides.
+/// Partitions when the children's boxes are known already (from the bins).
+/// Branch-free (Lomuto's scheme: every element is swapped into place, and
+/// the left end advances by the test's result), because at the top of the
+/// tree the test is a coin toss that a branch predictor loses half the
+/// time. Returns the left count.
 #[inline(always)]
 pub(super) fn partition_known<S: Source>(
     src: &S,
     range: &mut [S::Item],
     goes_left: impl Fn(f32) -> bool,
     axis: usize,
-) -> (usize, [Aabb; 2]) {
-    let (mut lmin, mut lmax) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
-    let (mut rmin, mut rmax) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+) -> usize {
     let mut j = 0;
     for i in 0..range.len() {
         let item = range[i];
         let (lo, hi) = src.lanes(item);
         let c = lo * 0.5 + hi * 0.5;
         let left = goes_left(c[axis]);
-        let m = BVec3A::splat(left);
-        // Same operand order as `Aabb::grow`.
-        lmin = Vec3A::select(m, c.min(lmin), lmin);
-        lmax = Vec3A::select(m, c.max(lmax), lmax);
-        rmin = Vec3A::select(m, rmin, c.min(rmin));
-        rmax = Vec3A::select(m, rmax, c.max(rmax));
         range[i] = range[j];
         range[j] = item;
         j += usize::from(left);
     }
-    (
-        j,
-        [
-            Aabb::new(lmin.into(), lmax.into()),
-            Aabb::new(rmin.into(), rmax.into()),
-        ],
-    )
+    j
 }
 
 /// In-place two-pointer partition; every element is classified exactly once
@@ -139,5 +130,6 @@ pub(super) fn partition_by<S: Source>(
         mid: i,
         bounds,
         centroids,
+        tight: true,
     }
 }

@@ -21,11 +21,18 @@ impl TopDown {
         src: &S,
         range: &mut [S::Item],
         scratch: &mut [u32],
-        task: &Task,
+        task: &mut Task,
         bv: &B,
         report: &mut BuildReport,
     ) -> Option<Halves> {
         let norm = Norm::new(&task.bounds);
+        // Binned SAH on x, y and z bins over any box that holds the
+        // centroids; every other strategy, and every fallback, reads the
+        // centroids' own box.
+        let loose_ok = self.is_binned_sah() && self.axis == AxisChoice::BestOfXyz;
+        if !loose_ok {
+            task.tighten(src, range);
+        }
         // Depth budget: a node of n primitives needs log2(n / max leaf)
         // more levels even when halved exactly. A criterion that splits off
         // a few primitives at a time (minimum overlap, maximum separation on
@@ -36,22 +43,28 @@ impl TopDown {
             .len()
             .div_ceil(self.stop.max_leaf_size.max(1) as usize);
         let needed = usize::BITS - (leaves.max(1) - 1).leading_zeros(); // ceil(log2)
-        let left = self.stop.max_depth.saturating_sub(task.depth);
+        let left = self.stop.max_depth.saturating_sub(u32::from(task.depth));
         if needed >= left && leaves > 1 {
             report.depth_limited += 1;
+            task.tighten(src, range);
             let dir = longest_direction(task);
             let mid = range.len() / 2;
             return Some(apply(src, range, Plan::Order { dir, mid }));
         }
         let n = range.len();
-        let mut attempt = |axis: AxisChoice, split: SplitPoint, partition: Partition| {
+        let mut attempt = |range: &mut [S::Item],
+                           task: &Task,
+                           axis: AxisChoice,
+                           split: SplitPoint,
+                           partition: Partition| {
             let plan = plan(src, range, scratch, task, bv, axis, split, partition, &norm)?;
             let h = apply(src, range, plan);
             (h.mid > 0 && h.mid < range.len()).then_some(h)
         };
+        let parent = task.bounds;
         let acceptable = |h: &Halves| {
-            !(norm.nearly_as_large(&h.bounds[0], &task.bounds)
-                && norm.nearly_as_large(&h.bounds[1], &task.bounds))
+            !(norm.nearly_as_large(&h.bounds[0], &parent)
+                && norm.nearly_as_large(&h.bounds[1], &parent))
         };
         // A criterion that ignores how many primitives each side holds can
         // be satisfied by cutting off a sliver (one triangle at the edge of a
@@ -59,14 +72,29 @@ impl TopDown {
         // 100 or more on one side counts as a failure for those.
         let count_blind = !self.partition.weighs_counts();
         let lopsided = |h: &Halves| count_blind && n >= 100 && h.mid.min(n - h.mid) * 100 < n;
-        if let Some(h) = attempt(self.axis, self.split, self.partition) {
-            if acceptable(&h) && !lopsided(&h) {
-                return Some(h);
+        // At most twice: when the bins spanned the node's box, once more
+        // over the centroids' own box. (One call site: each holds its own
+        // halves on the stack.)
+        loop {
+            if let Some(h) = attempt(range, task, self.axis, self.split, self.partition) {
+                if acceptable(&h) && !lopsided(&h) {
+                    return Some(h);
+                }
             }
+            if task.tight {
+                break;
+            }
+            task.tighten(src, range);
         }
         report.fallback_splits += 1;
         if self.axis != AxisChoice::BestOfXyz {
-            if let Some(h) = attempt(AxisChoice::BestOfXyz, self.split, self.partition) {
+            if let Some(h) = attempt(
+                range,
+                task,
+                AxisChoice::BestOfXyz,
+                self.split,
+                self.partition,
+            ) {
                 if acceptable(&h) && !lopsided(&h) {
                     return Some(h);
                 }
@@ -75,6 +103,8 @@ impl TopDown {
         if count_blind {
             // Another criterion: binned SAH, which prices each side's count.
             let sah = attempt(
+                range,
+                task,
                 AxisChoice::BestOfXyz,
                 SplitPoint::Bins(16),
                 Partition::SurfaceArea,
