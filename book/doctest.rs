@@ -922,10 +922,13 @@ mod tests {
             };
             // "faster than parry3d's binned builder on the meshes of 20,000
             // triangles and more" (below that, within the noise).
-            let (build_ok, fastest_ok) = if tris >= 19_000.0 {
-                (build < 1.0, fastest < 1.0)
+            // "level with obvhs's `fastest_build`": the ratio swings from
+            // run to run (0.68x to 1.46x in three runs), never by 2x.
+            let fastest_ok = (0.6..1.6).contains(&fastest);
+            let build_ok = if tris >= 19_000.0 {
+                build < 1.0
             } else {
-                (build < 1.25, fastest > 1.0)
+                build < 1.25
             };
             assert!(sah < 1.0 && build_ok && build > 0.33 && fastest_ok, "{r:?}");
             assert!(
@@ -936,7 +939,7 @@ mod tests {
         let chapter = include_str!("src/performance.md");
         assert!(chapter.contains("not yet three\n  times faster"));
         assert!(chapter.contains("on the meshes of 20,000 triangles and more"));
-        assert!(chapter.contains("The fastest builder beats obvhs's `fastest_build` on the meshes of\n  20,000 triangles and more"));
+        assert!(chapter.contains("The fastest builder is level with obvhs's `fastest_build`."));
     }
 
     /// The top-down chapter's scaling table is a recorded run of the
