@@ -192,9 +192,13 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
         "| mesh | tris | build: sah / parry3d binned (target <= 0.33) | SAH: sah / parry3d binned (<= 1) \
          | build: fastest bvhkit / obvhs fastest (< 1) | SAH: same two (<= 1) \
          | pairs: default / parry3d leaf_pairs (<= 0.33) | rays: default / best CWBVH (>= 1) \
-         | rays: best layout / best CWBVH (>= 1.5) | B/tri: quantized4 / best CWBVH (<= 1) |"
+         | rays: best layout / best CWBVH (>= 1.5) | B/tri: quantized4 / best CWBVH (<= 1) \
+         | SAH: sah / obvhs medium_build (<= 0.95) | build: same two |"
     );
-    let _ = writeln!(w, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(
+        w,
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
     for r in results {
         let build = |row: Option<&Row>| row.map(|x| x.m.build.median_ms);
         let sah = |row: Option<&Row>| row.and_then(|x| x.m.sah);
@@ -208,6 +212,9 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
             .filter(|x| x.m.krate == "bvhkit" && x.m.sah.is_some())
             .min_by(|x, y| x.m.build.median_ms.total_cmp(&y.m.build.median_ms));
         let fastest = find(r, "obvhs", "fastest_build");
+        // The quality target: obvhs's medium preset (SAH-driven PLOC with
+        // reinsertion), against the default tree.
+        let medium = find(r, "obvhs", "medium_build");
         let cwbvh: Vec<&Row> = r
             .rows
             .iter()
@@ -221,7 +228,7 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
         let q_bytes = find(r, "bvhkit", "sah/quantized4").map(|x| bytes_per_tri(x, r.tris));
         let _ = writeln!(
             w,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.tris,
             ratio(build(ours), build(parry)),
@@ -232,6 +239,8 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
             ratio(ours.and_then(mrays), best_cw),
             ratio(best_ours, best_cw),
             ratio(q_bytes, cw_bytes),
+            ratio(sah(ours), sah(medium)),
+            ratio(build(ours), build(medium)),
         );
     }
 
