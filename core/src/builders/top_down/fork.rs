@@ -18,8 +18,8 @@
 use super::source::Cached;
 use super::{containing_children, refit_to_contain_children, Task, TopDown};
 use crate::builders::{BuildReport, PrimitiveRef};
-use crate::bv::BoundingVolume;
-use crate::primitive::{validate_bounds, Primitive};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::primitive::{validate_bounds_each, Primitive};
 use crate::tree::{max_nodes, Bvh, Node, MAX_PRIMITIVES};
 use crate::Error;
 
@@ -157,14 +157,16 @@ impl TopDown {
                 available: scratch.len(),
             });
         }
-        // The check's boxes are the root's, as in the sequential build.
-        let (bounds, centroids) = validate_bounds(prims)?;
+        // The input check fills the records, piece by piece; its boxes are
+        // the root's, as in the sequential build (unions are exact, so any
+        // grouping gives the same boxes), and the first bad primitive of
+        // the earliest bad piece is the one named.
         let items = &mut cache[..n];
-        in_pieces(fork, grain, items, prims, 0, &|records, prims, first| {
-            for (i, (slot, p)) in records.iter_mut().zip(prims).enumerate() {
-                *slot = PrimitiveRef::new(&p.bounds(), (first + i) as u32);
-            }
-        });
+        let (bounds, centroids) =
+            in_pieces(fork, grain, items, prims, 0, &check_piece, &|a, b| {
+                let ((sa, ca), (sb, cb)) = (a?, b?);
+                Ok((sa.union(&sb), ca.union(&cb)))
+            })?;
         let root = Task {
             node: 0,
             start: 0,
@@ -201,6 +203,7 @@ impl TopDown {
                     *slot = item.index();
                 }
             },
+            &|(), ()| (),
         );
         let nodes: &'a [Node<B>] = nodes;
         let idx: &'a [u32] = indices;
@@ -210,26 +213,52 @@ impl TopDown {
 
 /// Runs `f(out, input, offset)` over matching pieces of `out` and `input`
 /// (`offset`: where the piece starts), halving them through `fork` while
-/// they hold at least `grain` entries.
-fn in_pieces<T: Send, U: Sync, F: Fork>(
+/// they hold at least `grain` entries; the pieces' results are combined in
+/// order, the earlier piece's first.
+fn in_pieces<T: Send, U: Sync, R: Send, F: Fork>(
     fork: &F,
     grain: usize,
     out: &mut [T],
     input: &[U],
     offset: usize,
-    f: &(impl Fn(&mut [T], &[U], usize) + Sync),
-) {
+    f: &(impl Fn(&mut [T], &[U], usize) -> R + Sync),
+    combine: &(impl Fn(R, R) -> R + Sync),
+) -> R {
     let n = out.len().min(input.len());
     if n < 2 * grain {
-        f(&mut out[..n], &input[..n], offset);
-        return;
+        return f(&mut out[..n], &input[..n], offset);
     }
     let (lo, hi) = out[..n].split_at_mut(n / 2);
     let (a, b) = input[..n].split_at(n / 2);
-    fork.join(
-        || in_pieces(fork, grain, lo, a, offset, f),
-        || in_pieces(fork, grain, hi, b, offset + n / 2, f),
+    let (x, y) = fork.join(
+        || in_pieces(fork, grain, lo, a, offset, f, combine),
+        || in_pieces(fork, grain, hi, b, offset + n / 2, f, combine),
     );
+    combine(x, y)
+}
+
+/// The input check over a piece that starts at primitive `first`, filling
+/// the piece's records: [`validate_bounds_each`] with the primitive an error
+/// names counted from the start of the whole input.
+fn check_piece<P: Primitive>(
+    records: &mut [PrimitiveRef],
+    prims: &[P],
+    first: usize,
+) -> Result<(Aabb, Aabb), Error> {
+    validate_bounds_each(prims, |i, b| {
+        if let Some(slot) = records.get_mut(i) {
+            *slot = PrimitiveRef::new(b, (first + i) as u32);
+        }
+    })
+    .map_err(|e| match e {
+        Error::NonFiniteCoordinate { primitive } => Error::NonFiniteCoordinate {
+            primitive: first + primitive,
+        },
+        Error::CoordinateOutOfRange { primitive } => Error::CoordinateOutOfRange {
+            primitive: first + primitive,
+        },
+        other => other,
+    })
 }
 
 /// The forked driver's constants, shared by every piece.
@@ -526,6 +555,53 @@ mod tests {
     }
 
     /// Short scratch or cache is a clear error, never a panic.
+    #[test]
+    fn bad_input_names_its_first_bad_primitive_in_any_piece() {
+        let mut tris = scene(11);
+        let n = 300;
+        tris[250].v[0].x = f32::NAN;
+        tris[137].v[1].y = 2.0 * crate::MAX_COORDINATE;
+        tris[90].v[2].z = f32::INFINITY;
+        fn run(tris: &[Triangle], grain: usize) -> Result<usize, Error> {
+            let mut nodes = [Node::<Aabb>::EMPTY; M];
+            let mut scratch = [Node::<Aabb>::EMPTY; M];
+            let (mut idx, mut cache) = ([0u32; N], [PrimitiveRef::EMPTY; N]);
+            TopDown::sah()
+                .build_cached_forked(
+                    tris,
+                    &mut nodes,
+                    &mut idx,
+                    &mut cache,
+                    &mut scratch,
+                    &Reversed(grain),
+                )
+                .map(|t| t.primitive_count())
+        }
+        // `Reversed` checks the later pieces first; the earliest bad
+        // primitive is still the one named, counted from the start of the
+        // whole input (a grain of 1000: one piece, the sequential check).
+        for grain in [2, 18, 64, 1000] {
+            let e = run(&tris[..n], grain);
+            assert_eq!(
+                e,
+                Err(Error::NonFiniteCoordinate { primitive: 90 }),
+                "{grain}"
+            );
+            let e = run(&tris[100..n], grain);
+            assert_eq!(
+                e,
+                Err(Error::CoordinateOutOfRange { primitive: 37 }),
+                "{grain}"
+            );
+            let e = run(&tris[140..n], grain);
+            assert_eq!(
+                e,
+                Err(Error::NonFiniteCoordinate { primitive: 110 }),
+                "{grain}"
+            );
+        }
+    }
+
     #[test]
     fn short_storage_is_an_error() {
         let all = scene(9);
