@@ -22,7 +22,9 @@ macro_rules! chapters {
     };
 }
 
-/// The README's Rust blocks (its embedded snippet) run as doctests too.
+/// The README's Rust blocks (its embedded snippet) run as doctests too, on
+/// the edition a new project gets (the block says `rust edition2024`: no
+/// `&mut` to a `static mut`, for one).
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub mod readme {}
