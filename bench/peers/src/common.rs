@@ -192,8 +192,18 @@ pub fn bounds_of(tris: &[Triangle]) -> Vec<Aabb> {
     tris.iter().map(Primitive::bounds).collect()
 }
 
+/// Counted runs go on past the requested count until they add up to this
+/// much time: five builds of a quarter of a millisecond are 1.25 ms, which
+/// one burst of a shared machine's noise decides (the fast builders' ratio
+/// swung from 0.68x to 1.46x between three quick runs of one day).
+pub const MIN_TIMED_MS: f64 = 200.0;
+/// At most this many counted runs, however short each is.
+pub const MAX_RUNS: usize = 1000;
+
 /// Like [`time`], but `setup` makes a fresh input for every run outside the
-/// timed part (for builders that consume or mutate their input).
+/// timed part (for builders that consume or mutate their input). Runs at
+/// least `runs` times, and more until [`MIN_TIMED_MS`] are timed (at most
+/// [`MAX_RUNS`]).
 pub fn time_setup<S, R>(
     runs: usize,
     mut setup: impl FnMut() -> S,
@@ -202,11 +212,14 @@ pub fn time_setup<S, R>(
     std::hint::black_box(f(setup()));
     let mut ms = Vec::with_capacity(runs.max(1));
     let mut last = None;
-    for _ in 0..runs.max(1) {
+    let mut total = 0.0;
+    while ms.len() < runs.max(1) || (total < MIN_TIMED_MS && ms.len() < MAX_RUNS) {
         let input = setup();
         let t = Instant::now();
         let r = std::hint::black_box(f(input));
-        ms.push(t.elapsed().as_secs_f64() * 1e3);
+        let elapsed = t.elapsed().as_secs_f64() * 1e3;
+        ms.push(elapsed);
+        total += elapsed;
         last = Some(r);
     }
     ms.sort_by(f64::total_cmp);

@@ -152,6 +152,6 @@ mod tests {
     #[test]
     fn answers_match_brute_force() {
         let m = crate::common::reference::run_and_check(super::run);
-        assert_eq!(m.len(), 5);
+        assert_eq!(m.len(), 6);
     }
 }

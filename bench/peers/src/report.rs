@@ -170,7 +170,7 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
     let _ = writeln!(w, "# bvhkit against peer crates\n");
     let _ = writeln!(
         w,
-        "{} · {} · {} · {} run: {} rays per mesh; median of {} builds, {} pair queries, {} ray passes · {:.0} s\n",
+        "{} · {} · {} · {} run: {} rays per mesh; median of at least {} builds, {} pair queries, {} ray passes (more until {:.0} ms are timed) · {:.0} s\n",
         stamp.date,
         stamp.machine,
         stamp.peers,
@@ -179,6 +179,7 @@ pub fn markdown(results: &[SceneResult], stamp: &Stamp) -> String {
         stamp.runs[0],
         stamp.runs[1],
         stamp.runs[2],
+        crate::common::MIN_TIMED_MS,
         stamp.seconds
     );
     let _ = writeln!(w, "## Targets\n");
