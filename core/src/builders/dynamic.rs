@@ -160,6 +160,28 @@ fn area<B: BoundingVolume>(b: &B) -> f64 {
     b.cost_area_scaled(1.0) as f64
 }
 
+/// A power of two that brings `b`'s largest extent into `[1, 2)`: an
+/// insertion compares its candidates' areas with lengths in that unit, so a
+/// scene 1e30 wide (areas 1e60, past `f32`) or 1e-15 wide (products of
+/// extents that fall to subnormals) compares as it would at unit size. A
+/// power of two scales every length exactly, so the choices, and the tree,
+/// are the same as in raw `f32` wherever that did not overflow.
+fn unit_scale(b: &Aabb) -> f32 {
+    let m = b.extent().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return 1.0;
+    }
+    // `m` in [2^(e-127), 2^(e-126)) for its biased exponent `e` (0 for a
+    // subnormal, which the clamp treats as the smallest normal).
+    let e = ((m.to_bits() >> 23) & 0xff) as i32;
+    f32::from_bits(((254 - e.max(1)).clamp(1, 254) as u32) << 23)
+}
+
+/// [`area`] with lengths scaled by `scale` (see [`unit_scale`]).
+fn area_in<B: BoundingVolume>(b: &B, scale: f32) -> f64 {
+    b.cost_area_scaled(scale) as f64
+}
+
 /// The Goldsmith–Salmon cost of `sibling` for a new leaf `bv`: the new
 /// parent's area plus the growth of every ancestor.
 fn cost_in<B: BoundingVolume>(nodes: &[DynNode<B>], sibling: u32, bv: &B) -> f64 {
@@ -388,6 +410,8 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     }
 
     fn best_sibling(&self, bv: &B) -> u32 {
+        // Lengths in the unit of the tree and the new box together.
+        let scale = unit_scale(&self.nodes[self.root as usize].bv.merge(bv).aabb());
         match self.config.search {
             SiblingSearch::Descent => {
                 // Goldsmith–Salmon with the weights of Box2D's dynamic tree:
@@ -396,17 +420,17 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
                 let mut n = self.root;
                 while !self.nodes[n as usize].is_leaf() {
                     let node = &self.nodes[n as usize];
-                    let combined = area(&node.bv.merge(bv));
+                    let combined = area_in(&node.bv.merge(bv), scale);
                     let here = 2.0 * combined;
-                    let inheritance = 2.0 * (combined - area(&node.bv));
+                    let inheritance = 2.0 * (combined - area_in(&node.bv, scale));
                     let child_cost = |c: u32| {
                         let cb = &self.nodes[c as usize].bv;
-                        let m = area(&cb.merge(bv));
+                        let m = area_in(&cb.merge(bv), scale);
                         inheritance
                             + if self.nodes[c as usize].is_leaf() {
                                 m
                             } else {
-                                m - area(cb)
+                                m - area_in(cb, scale)
                             }
                     };
                     let (cl, cr) = (child_cost(node.left), child_cost(node.right));
@@ -422,17 +446,17 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
                 let mut stack = [(NULL, 0.0f64); 2 * MAX_DEPTH + 2];
                 stack[0] = (self.root, 0.0);
                 let mut top = 1;
-                let own = area(bv);
+                let own = area_in(bv, scale);
                 while top > 0 {
                     top -= 1;
                     let (n, inherited) = stack[top];
                     let node = &self.nodes[n as usize];
-                    let direct = area(&node.bv.merge(bv));
+                    let direct = area_in(&node.bv.merge(bv), scale);
                     let cost = direct + inherited;
                     if cost < best.0 {
                         best = (cost, n);
                     }
-                    let below = inherited + direct - area(&node.bv);
+                    let below = inherited + direct - area_in(&node.bv, scale);
                     // Any sibling below costs at least the new leaf's own area.
                     if !node.is_leaf() && own + below < best.0 && top + 2 <= stack.len() {
                         stack[top] = (node.right, below);

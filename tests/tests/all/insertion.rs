@@ -600,3 +600,65 @@ fn other(tris: &[Triangle]) -> bvhkit::Bvh<'static, Aabb> {
     let idx = Box::leak(vec![0u32; tris.len()].into_boxed_slice());
     TopDown::sah().build(tris, nodes, idx).unwrap()
 }
+
+/// #19: insertion costs are compared in the scene's unit, so a scene 1e30
+/// wide (whose areas, 1e60, overflow `f32`) or 1e-15 wide (1e-30 areas,
+/// where products of extents fall to subnormals and zero) gets the tree the
+/// same scene gets at unit size. In raw `f32` every candidate at 1e30 cost
+/// infinity and tied, and insertion built a chain.
+#[test]
+fn insertion_builds_the_same_tree_at_any_scale() {
+    let mut state = 11u64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let unit: Vec<(Vec3, f32)> = (0..600)
+        .map(|_| {
+            (
+                Vec3::new(uniform(), uniform(), uniform()),
+                0.01 * (0.1 + uniform()),
+            )
+        })
+        .collect();
+    // Power-of-two scales: every coordinate scales exactly.
+    let scaled = |s: f32| -> Vec<Aabb> {
+        unit.iter()
+            .map(|&(o, size)| Aabb::new(o * s, (o + Vec3::splat(size)) * s))
+            .collect()
+    };
+    for search in [SiblingSearch::Descent, SiblingSearch::BranchAndBound] {
+        let cfg = DynamicConfig {
+            search,
+            ..DynamicConfig::default()
+        };
+        let shape = |boxes: &[Aabb]| {
+            let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * boxes.len() - 1];
+            let mut tree = DynamicTree::new(&mut storage, cfg).unwrap();
+            for (i, b) in boxes.iter().enumerate() {
+                tree.insert(i as u32, b).unwrap();
+            }
+            let mut nodes = vec![Node::<Aabb>::EMPTY; 2 * boxes.len() - 1];
+            let mut idx = vec![0u32; boxes.len()];
+            let t = tree.to_bvh(&mut nodes, &mut idx).unwrap();
+            let s = t.stats();
+            (s.sah_cost, s.max_depth, idx.clone())
+        };
+        let reference = shape(&scaled(1.0));
+        for s in [2f32.powi(100), 2f32.powi(-50)] {
+            let got = shape(&scaled(s));
+            // Not `assert_eq!` on the whole: 600 indices would be printed.
+            assert_eq!(
+                (got.0, got.1),
+                (reference.0, reference.1),
+                "{search:?} at scale {s:e}: SAH and depth"
+            );
+            assert!(
+                got.2 == reference.2,
+                "{search:?} at scale {s:e}: leaf order"
+            );
+        }
+    }
+}
