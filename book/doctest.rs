@@ -434,6 +434,14 @@ mod tests {
                     "{mesh} {other}"
                 );
             }
+            // "on these meshes the table shows the 18-DOP ahead" (of the 14-DOP).
+            assert!(get("18-dop", "volume") < get("14-dop", "volume"), "{mesh}");
+            if mesh == "rock" {
+                // "on the round rock it is tighter than the 14-DOP, though
+                // not the 18- or 26-DOP".
+                let welzl = get("sphere-welzl", "volume");
+                assert!(get("18-dop", "volume") < welzl && welzl < get("14-dop", "volume"));
+            }
             let (surface, vertices) = (get("obb-pca-hull", "volume"), get("obb-pca", "volume"));
             hull_wins |= surface < vertices;
             hull_loses |= surface > vertices;
@@ -477,6 +485,13 @@ mod tests {
                 for k in ["bv_tests", "prim_tests"] {
                     assert!(num(get(dop, "sah"), k) <= num(aabb, k), "{scene} {dop} {k}");
                 }
+                if scene != "rocks" {
+                    // "the pruning saves at most about a fifth of the volume
+                    // tests and a few percent of the primitive tests".
+                    let saved = |k: &str| 1.0 - num(get(dop, "sah"), k) / num(aabb, k);
+                    assert!(saved("bv_tests") < 0.22, "{scene} {dop}");
+                    assert!(saved("prim_tests") < 0.08, "{scene} {dop}");
+                }
             }
             let sphere = get("sphere", "sah");
             assert!(
@@ -497,7 +512,8 @@ mod tests {
             assert!((0.99..1.01).contains(&ratio("prim_tests")), "{scene}");
             // "within a fifth either way in the recorded run".
             assert!((0.8..1.2).contains(&ratio("query_ms")), "{scene}");
-            assert!(ratio("build_ms") > 1.3, "{scene}");
+            // "a build 1.6 to 1.8 times as long".
+            assert!((1.6..1.8).contains(&ratio("build_ms")), "{scene}");
             if scene != "rocks" {
                 let fastest = v
                     .iter()
@@ -945,7 +961,8 @@ mod tests {
             .collect();
         assert!(targets.len() >= 5);
         for r in &targets {
-            let [tris, build, sah, fastest, _, pairs, rays, _, bytes, quality, _] = r[..] else {
+            let [tris, build, sah, fastest, _, pairs, rays, best_rays, bytes, quality, _] = r[..]
+            else {
                 panic!("targets row {r:?}")
             };
             // "faster than parry3d's binned builder on the meshes of 20,000
@@ -961,6 +978,9 @@ mod tests {
             // "12 to 13% below that of obvhs's `medium_build`" (the target:
             // at least 5% below).
             assert!((0.865..0.885).contains(&quality), "{r:?}");
+            // "the best bvhkit layout (4-wide), at 0.77x to 0.97x of its rays
+            // per second".
+            assert!((0.77..0.975).contains(&best_rays), "{r:?}");
             // "faster than parry3d's `leaf_pairs` on every mesh but the
             // dragon" (19,994 triangles).
             let dragon = (19_000.0..20_000.0).contains(&tris);
@@ -973,8 +993,8 @@ mod tests {
         let chapter = include_str!("src/performance.md");
         assert!(chapter.contains("not yet three\n  times faster"));
         assert!(chapter.contains("1.37x in the latest run"));
-        assert!(chapter.contains("on the meshes of 20,000 triangles and more"));
-        assert!(chapter.contains("The fastest builder beats obvhs's `fastest_build` on the meshes of\n  20,000 triangles and more, and not on the elephant."));
+        assert!(chapter.contains("on the meshes of about 20,000 triangles and more"));
+        assert!(chapter.contains("The fastest builder beats obvhs's `fastest_build` on the meshes of\n  about 20,000 triangles and more, and not on the elephant."));
         assert!(chapter.contains(
             "The default tree's SAH cost is 12 to 13% below that of obvhs's\n  `medium_build`"
         ));

@@ -138,8 +138,8 @@ pub enum Error {
 
 impl Error {
     /// What went wrong, as a fixed sentence without the numbers: printing it
-    /// links no formatting code (on a Cortex-M4, `{}` costs about 14 KB of
-    /// flash and `{:?}` 7 KB; see the book's embedded chapter).
+    /// links no formatting code (the book's embedded chapter measures what
+    /// `{}` and `{:?}` add to a Cortex-M4 firmware).
     pub const fn as_str(&self) -> &'static str {
         match self {
             Error::NonFiniteCoordinate { .. } => "a primitive has a NaN or infinite coordinate",

@@ -36,8 +36,8 @@ pub trait Exercises {
     /// Exercise 2c: a sphere containing every point of a non-empty set (each
     /// point's distance to the centre, computed in `f64`, at most the radius)
     /// and at most 1.5 times the radius of the minimal sphere. Ritter's
-    /// method is enough: it stays under 1.3 times on the grader's point sets
-    /// (it can exceed 1.25 times).
+    /// method is enough on the grader's point sets (the bound of 1.5 leaves
+    /// room for its variants).
     fn sphere_fit(&self, points: &[Vec3]) -> Sphere;
     /// Exercise 2d: a sphere containing two spheres, as small as possible.
     fn sphere_merge(&self, a: &Sphere, b: &Sphere) -> Sphere;
@@ -132,7 +132,8 @@ pub trait Exercises {
     fn implicit_parent(&self, i: usize) -> Option<usize>;
     /// Exercise 11c: how many entries the implicit array of a tree of depth
     /// `depth` needs (the root alone has depth 0), for every depth up to 62
-    /// (the largest whose answer fits a 64-bit `usize`).
+    /// (the largest for which `(1 << (depth + 1)) - 1` does not overflow a
+    /// 64-bit `usize`).
     fn implicit_len(&self, depth: u32) -> usize;
 
     /// Exercise 12: the tree in preorder. Return one entry per node, in

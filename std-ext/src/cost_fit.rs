@@ -22,7 +22,8 @@
 //! several times one under `larger`), and the primitive test is split into
 //! the box filter every candidate pair pays (`Np`, `Cp`) and the exact
 //! triangle test that only the pairs whose boxes overlap reach (`Ne`, `Ce`):
-//! on sliver-heavy scenes most candidates reach it, on a rock few do.
+//! about one candidate in four on slivers in deep contact, one in tens on
+//! random soups and clusters.
 //!
 //! ```
 //! use bvhkit_std::cost_fit::{self, Scene};

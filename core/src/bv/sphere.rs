@@ -1,6 +1,7 @@
 //! Bounding sphere: centre and radius; three fits of increasing quality.
 //!
-//! * [`Sphere::ritter`]: two passes, within ~5-20% of the minimum.
+//! * [`Sphere::ritter`]: two passes; often close to the minimum, but with no
+//!   bound tighter than the method's own (it can be well above it).
 //! * [`Sphere::ritter_refined`]: Ritter, then repeatedly shrink and regrow over a
 //!   shuffled order, keeping the smallest (Ericson's iterative refinement).
 //! * [`Sphere::welzl`]: the exact minimal sphere, Welzl's algorithm written as

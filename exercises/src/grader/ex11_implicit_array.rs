@@ -2,7 +2,8 @@
 
 use super::common::*;
 
-/// The deepest tree whose implicit array length fits a 64-bit `usize`.
+/// The deepest tree for which `(1 << (depth + 1)) - 1` does not overflow a
+/// 64-bit `usize` (depth 63's length, `usize::MAX`, fits; its shift does not).
 const DEEPEST: u32 = 62;
 
 /// The checks of exercise 11.
