@@ -111,3 +111,37 @@ impl Aabb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tree::Node;
+    use glam::Vec3;
+
+    #[test]
+    fn f64_box_area_is_exact_and_does_not_overflow() {
+        let b = Aabb::new(Vec3::ZERO, Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(b.surface_area_f64(), 22.0); // 2 * (2 + 6 + 3)
+        let huge = Aabb::new(Vec3::ZERO, Vec3::new(1e30, 2e30, 3e30));
+        assert!((huge.surface_area_f64() / 22e60 - 1.0).abs() < 1e-6);
+        assert_eq!(Aabb::EMPTY.surface_area_f64(), 0.0);
+    }
+
+    /// Sibling overlap: the intersection's area over the root's, summed over
+    /// sibling pairs; 0 for siblings that only touch.
+    #[test]
+    fn sibling_overlap_is_the_intersection_over_the_root() {
+        let boxes = [
+            Aabb::new(Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)),
+            Aabb::new(Vec3::new(1.0, 0.0, 0.0), Vec3::new(3.0, 1.0, 1.0)),
+        ];
+        let mut nodes = [Node::<Aabb>::EMPTY; 3];
+        let mut idx = [0u32; 2];
+        let t = crate::TopDown::default()
+            .with_max_leaf_size(1)
+            .build(&boxes, &mut nodes, &mut idx)
+            .unwrap();
+        // Intersection 1x1x1 (area 6) over the 3x1x1 root (area 14).
+        assert!((t.stats().sibling_overlap - 6.0 / 14.0).abs() < 1e-12);
+    }
+}

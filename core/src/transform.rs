@@ -249,6 +249,19 @@ mod tests {
     use crate::BoundingVolume;
 
     #[test]
+    fn only_the_identity_is_the_identity() {
+        assert!(Rigid::IDENTITY.is_identity());
+        assert!(Rigid::new(Quat::IDENTITY, Vec3::ZERO)
+            .unwrap()
+            .is_identity());
+        assert!(!Rigid::translation(Vec3::new(0.0, 1e-30, 0.0))
+            .unwrap()
+            .is_identity());
+        let turn = Rigid::new(Quat::from_rotation_z(1e-3), Vec3::ZERO).unwrap();
+        assert!(!turn.is_identity());
+    }
+
+    #[test]
     fn moved_boxes_contain_moved_points() {
         let t = Rigid::new(
             Quat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 2.0),
