@@ -569,6 +569,13 @@ mod tests {
                 num(sweep, "build_ms") > 5.0 * num(sah, "build_ms"),
                 "{scene}"
             );
+            // "`parent-axes` ... nearly the same tree (SAH within 0.2%)
+            // ... several times slower ... query times within a seventh".
+            let parent = row(&b, "builder", "parent-axes");
+            let ratio = |k: &str| num(parent, k) / num(sah, k);
+            assert!((ratio("sah_cost") - 1.0).abs() < 0.002, "{scene}");
+            assert!(ratio("build_ms") > 2.5, "{scene}");
+            assert!((ratio("query_ms") - 1.0).abs() < 0.15, "{scene}");
             for dominated in ["min-overlap", "max-separation"] {
                 assert_eq!(
                     row(&b, "builder", dominated)["pareto"],
