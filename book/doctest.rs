@@ -895,6 +895,28 @@ mod tests {
         }
     }
 
+    /// The committed figures are what the code draws now (`bvhkit figures`
+    /// redraws them), and each is shown by the chapter it names.
+    #[test]
+    fn figures_match_the_code_and_their_chapters_show_them() {
+        let src = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/src"));
+        let problems = bvhkit_std::figures::check(src, &src.join("figures")).unwrap();
+        assert!(
+            problems.is_empty(),
+            "run `cargo run --release -p bvhkit-std --bin bvhkit -- figures`:\n{}",
+            problems.join("\n")
+        );
+        for f in bvhkit_std::figures::all(src).unwrap() {
+            let chapter = std::fs::read_to_string(src.join(f.chapter)).unwrap();
+            assert!(
+                chapter.contains(&format!("](figures/{}.svg)", f.name)),
+                "{} does not show figures/{}.svg",
+                f.chapter,
+                f.name
+            );
+        }
+    }
+
     /// Every chapter listed in SUMMARY.md is compiled here, and vice versa.
     #[test]
     fn summary_and_doctests_list_the_same_chapters() {

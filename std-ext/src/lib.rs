@@ -10,6 +10,7 @@ pub mod builders;
 pub mod collide;
 pub mod cost;
 pub mod cost_fit;
+pub mod figures;
 pub mod hull;
 pub mod layouts;
 pub mod mesh;

@@ -234,6 +234,19 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Draw the book's figures (SVG, computed by the library itself) into
+    /// the book's figures folder, or check the committed ones against what
+    /// the code draws now.
+    Figures {
+        /// The book's `src` folder (figures go to its `figures/`; plots of
+        /// recorded runs read its `measured/`).
+        #[arg(default_value = "book/src")]
+        book_src: PathBuf,
+        /// Compare instead of writing: list every figure that differs, is
+        /// missing or is drawn by nothing, and exit 1 if any.
+        #[arg(long)]
+        check: bool,
+    },
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -300,6 +313,34 @@ fn print_json<T: serde::Serialize>(value: &T) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Figures { book_src, check } => {
+            use bvhkit_std::figures;
+            let dir = book_src.join("figures");
+            let result = if check {
+                figures::check(&book_src, &dir).map(|problems| {
+                    for p in &problems {
+                        eprintln!("{p}");
+                    }
+                    if problems.is_empty() {
+                        println!("every figure in {} matches the code", dir.display());
+                    }
+                    problems.is_empty()
+                })
+            } else {
+                figures::write_all(&book_src, &dir).map(|written| {
+                    println!("{} figures written to {}", written.len(), dir.display());
+                    true
+                })
+            };
+            match result {
+                Ok(true) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::FAILURE,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
         Command::Advise {
             mesh,
             query,
