@@ -45,6 +45,7 @@ chapters! {
     performance => "performance.md",
     embedded => "embedded.md",
     exercises => "exercises.md",
+    explorer => "explorer.md",
 }
 
 /// What a book snippet prints, checked against the output its chapter shows.
