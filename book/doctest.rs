@@ -907,7 +907,20 @@ mod tests {
             "run `cargo run --release -p bvhkit-std --bin bvhkit -- figures`:\n{}",
             problems.join("\n")
         );
-        for f in bvhkit_std::figures::all(src).unwrap() {
+        // Every chapter has at least one (the explorer page is itself the picture).
+        let summary = include_str!("src/SUMMARY.md");
+        let figures = bvhkit_std::figures::all(src).unwrap();
+        for chapter in summary
+            .split("](")
+            .skip(1)
+            .filter_map(|s| s.split(')').next())
+        {
+            assert!(
+                chapter == "explorer.md" || figures.iter().any(|f| f.chapter == chapter),
+                "{chapter} has no generated figure"
+            );
+        }
+        for f in figures {
             let chapter = std::fs::read_to_string(src.join(f.chapter)).unwrap();
             assert!(
                 chapter.contains(&format!("](figures/{}.svg)", f.name)),
