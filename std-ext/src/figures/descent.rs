@@ -8,13 +8,14 @@
 //! sequence of tests and pairs the library reports, in order, or the figure
 //! fails.
 
-use super::svg::{colour, Style, Svg};
+use super::svg::{colour, stack_rows, Style, Svg};
+use super::walk_log::{Event, Log};
 use super::{Figure, FigureError};
 use crate::OwnedBvh;
 use bvhkit::glam::{Vec2, Vec3};
 use bvhkit::{
     Aabb, Bvh, Content, Counts, Decision, Descent, DescentRule, Hierarchy, Open, Pairs, Primitive,
-    Tally, TopDown, Triangle,
+    TopDown, Triangle,
 };
 use std::cell::RefCell;
 use std::path::Path;
@@ -54,58 +55,6 @@ pub(super) fn outline(n: usize, radius: f32, lean: f32, seed: u64) -> Vec<Triang
 /// A triangle's corners in the plane.
 pub(super) fn corners(t: &Triangle) -> [Vec2; 3] {
     t.v.map(|p| p.truncate())
-}
-
-/// Stacks finished pictures of the same width into one, top to bottom: a
-/// grid of panels when each picture is a row of them. The rows keep their
-/// drawing; each is moved down by the heights of the rows above it.
-pub(super) fn stack_rows(width: f32, rows: &[(f32, String)]) -> String {
-    let height: f32 = rows.iter().map(|r| r.0).sum();
-    let frame = Svg::new(width, height, Vec2::ZERO, Vec2::ONE).finish();
-    let mut body = String::new();
-    let mut top = 0.0;
-    for (h, doc) in rows {
-        // Drop the row's own header, white background and closing tag.
-        let inner: Vec<&str> = doc.lines().skip(2).filter(|l| *l != "</svg>").collect();
-        body.push_str(&format!(
-            "<g transform=\"translate(0,{top:.2})\">\n{}\n</g>\n",
-            inner.join("\n")
-        ));
-        top += h;
-    }
-    let end = frame.len() - "</svg>\n".len();
-    format!("{}{body}</svg>\n", &frame[..end])
-}
-
-/// What the library reports while it walks, in order.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Event {
-    /// One volume pair test (`Nv`).
-    Node,
-    /// A leaf pair's primitive pairs tested (`Np`).
-    Prims(u32),
-    /// A primitive pair reported.
-    Pair(u32, u32),
-}
-
-/// A [`Tally`] that counts and also writes the order of the tests.
-struct Log<'a> {
-    counts: Counts,
-    events: &'a RefCell<Vec<Event>>,
-}
-
-impl Tally for Log<'_> {
-    fn bv_tests(&mut self, n: u32) {
-        self.counts.bv_tests(n);
-        self.events.borrow_mut().extend((0..n).map(|_| Event::Node));
-    }
-    fn prim_tests(&mut self, n: u32) {
-        self.counts.prim_tests(n);
-        self.events.borrow_mut().push(Event::Prims(n));
-    }
-    fn updates(&mut self, n: u32) {
-        self.counts.updates(n);
-    }
 }
 
 /// What one rule did: how many volume tests it made at each pair of

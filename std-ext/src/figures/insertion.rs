@@ -1,8 +1,9 @@
 //! Figures of the book's `insertion.md` chapter: a dynamic tree growing
 //! from sorted input, without rotations and with them.
 
+use super::svg::stack_rows;
 use super::svg::{colour, Style, Svg};
-use super::top_down::{flat, stack_rows, uniform};
+use super::top_down::{flat, uniform};
 use super::{Figure, FigureError};
 use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations, SiblingSearch};
 use bvhkit::glam::Vec2;

@@ -27,6 +27,7 @@ mod top_down;
 mod traversal;
 mod tree_degree;
 mod volumes;
+mod walk_log;
 
 use bvhkit::glam::{Vec2, Vec3};
 use bvhkit::{Kdop, Obb};

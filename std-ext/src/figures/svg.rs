@@ -265,6 +265,32 @@ impl Svg {
     }
 }
 
+/// Stacks finished SVG documents (each `width` wide) one under the other
+/// into one picture: each is nested as an `<svg>` element at its offset,
+/// so every row keeps its own panels and coordinates.
+pub fn stack_rows(width: f32, rows: &[(f32, String)]) -> String {
+    let height: f32 = rows.iter().map(|r| r.0).sum();
+    let mut out = format!(
+        concat!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.0} {h:.0}" "#,
+            r#"font-family="sans-serif">"#,
+            "\n",
+            r#"<rect width="100%" height="100%" fill="white"/>"#,
+            "\n"
+        ),
+        w = width,
+        h = height
+    );
+    let mut y = 0.0;
+    for (h, doc) in rows {
+        let nested = doc.replacen("<svg ", &format!(r#"<svg x="0" y="{y:.0}" "#), 1);
+        out.push_str(&nested);
+        y += h;
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")

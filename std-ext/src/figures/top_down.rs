@@ -1,7 +1,7 @@
 //! Figures of the book's `top-down.md` chapter: the first splits of several
 //! partition strategies (the library's presets) on one small scene.
 
-use super::svg::{colour, Style, Svg};
+use super::svg::{colour, stack_rows, Style, Svg};
 use super::{Figure, FigureError};
 use bvhkit::builders::PRESETS;
 use bvhkit::glam::Vec2;
@@ -80,32 +80,6 @@ pub(super) fn primitives_under(tree: &Bvh<Aabb>, n: u32, out: &mut Vec<u32>) {
 /// The corners in the plane of a box.
 pub(super) fn flat(b: &Aabb) -> (Vec2, Vec2) {
     (b.min.truncate(), b.max.truncate())
-}
-
-/// Stacks finished SVG documents (each `width` wide) one under the other
-/// into one picture: each is nested as an `<svg>` element at its offset,
-/// so every row keeps its own panels and coordinates.
-pub(super) fn stack_rows(width: f32, rows: &[(f32, String)]) -> String {
-    let height: f32 = rows.iter().map(|r| r.0).sum();
-    let mut out = format!(
-        concat!(
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.0} {h:.0}" "#,
-            r#"font-family="sans-serif">"#,
-            "\n",
-            r#"<rect width="100%" height="100%" fill="white"/>"#,
-            "\n"
-        ),
-        w = width,
-        h = height
-    );
-    let mut y = 0.0;
-    for (h, doc) in rows {
-        let nested = doc.replacen("<svg ", &format!(r#"<svg x="0" y="{y:.0}" "#), 1);
-        out.push_str(&nested);
-        y += h;
-    }
-    out.push_str("</svg>\n");
-    out
 }
 
 fn first_splits() -> Result<Figure, FigureError> {

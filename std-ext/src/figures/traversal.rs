@@ -12,12 +12,13 @@
 //! fails.
 
 use super::svg::{colour, Style, Svg};
+use super::walk_log::{Event, Log};
 use super::{Figure, FigureError};
 use crate::OwnedBvh;
 use bvhkit::glam::{Vec2, Vec3};
 use bvhkit::{
     Aabb, BoundingVolume, Bvh, Content, Counts, Hierarchy, Order, Primitive, Ray, RayOrder,
-    RayTarget, Region, Sphere, Tally, TopDown,
+    RayTarget, Region, Sphere, TopDown,
 };
 use std::cell::RefCell;
 use std::collections::VecDeque;
@@ -49,37 +50,6 @@ fn discs() -> Vec<Sphere> {
             Sphere::new(c, 0.3 + next() * 0.35)
         })
         .collect()
-}
-
-/// What the library reports while it walks, in order.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Event {
-    /// One node test (`Nv`).
-    Node,
-    /// A leaf's primitives tested (`Np`).
-    Prims(u32),
-    /// A primitive found (region) or tested against the ray.
-    Prim(u32),
-}
-
-/// A [`Tally`] that counts and also writes the order of the tests.
-struct Log<'a> {
-    counts: Counts,
-    events: &'a RefCell<Vec<Event>>,
-}
-
-impl Tally for Log<'_> {
-    fn bv_tests(&mut self, n: u32) {
-        self.counts.bv_tests(n);
-        self.events.borrow_mut().extend((0..n).map(|_| Event::Node));
-    }
-    fn prim_tests(&mut self, n: u32) {
-        self.counts.prim_tests(n);
-        self.events.borrow_mut().push(Event::Prims(n));
-    }
-    fn updates(&mut self, n: u32) {
-        self.counts.updates(n);
-    }
 }
 
 /// A disc that notes every ray test made on it.
