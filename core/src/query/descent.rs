@@ -88,7 +88,8 @@ pub enum Descent {
     AFirst,
     /// The mirror image of [`AFirst`](Self::AFirst): good when B is small.
     BFirst,
-    /// Open the node with the larger [`size`](BoundingVolume::size). Keeps
+    /// Open the node with the larger [`size`](BoundingVolume::size) (on a
+    /// tie, as between flat volumes, the larger area). Keeps
     /// the two volumes of similar size, so each test prunes well; one size
     /// comparison per decision. The usual default.
     #[default]
@@ -189,9 +190,17 @@ fn by_overlap<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
     }
 }
 
+/// The larger volume; on a tie (flat scenes, where every volume is 0) the
+/// larger area, so that a 2-D scene does not fall back to "always A".
 #[inline]
 fn larger<B: BoundingVolume>(d: &Decision<'_, B>) -> Open {
-    if d.a.size() >= d.b.size() {
+    let (sa, sb) = (d.a.size(), d.b.size());
+    let a_wins = if sa == sb {
+        d.a.cost_area_scaled(1.0) >= d.b.cost_area_scaled(1.0)
+    } else {
+        sa > sb
+    };
+    if a_wins {
         Open::A
     } else {
         Open::B
@@ -241,5 +250,35 @@ impl<N: DescentRule, F: DescentRule> DescentRule for DepthSwitch<N, F> {
 
     fn wants_children(&self) -> bool {
         self.near.wants_children() || self.far.wants_children()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Aabb;
+    use glam::Vec3;
+
+    /// Flat volumes (a 2-D scene at z = 0) all have volume 0: the larger
+    /// rule then compares their areas, instead of always opening A.
+    #[test]
+    fn larger_compares_areas_when_volumes_tie() {
+        let small = Aabb::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0));
+        let big = Aabb::new(Vec3::ZERO, Vec3::new(4.0, 3.0, 0.0));
+        let d = |a, b| Decision {
+            a,
+            b,
+            a_children: None,
+            b_children: None,
+            depth: 0,
+        };
+        assert_eq!(Descent::Larger.choose(&d(&small, &big)), Open::B);
+        assert_eq!(Descent::Larger.choose(&d(&big, &small)), Open::A);
+        // Volumes decide when they differ, whatever the areas.
+        let thin = Aabb::new(Vec3::ZERO, Vec3::new(100.0, 100.0, 0.001));
+        let cube = Aabb::new(Vec3::ZERO, Vec3::splat(3.0));
+        assert_eq!(Descent::Larger.choose(&d(&thin, &cube)), Open::B);
+        // A full tie opens A, as before.
+        assert_eq!(Descent::Larger.choose(&d(&big, &big)), Open::A);
     }
 }
