@@ -174,10 +174,13 @@ pub struct QuantizedWide<'a> {
 }
 
 impl<'a> QuantizedWide<'a> {
-    /// Most records a tree over `n` primitives can need (one per inner node
-    /// of the collapsed tree, at most `n - 1`, and one for a lone leaf): a
-    /// `const fn` to size `static` storage; [`records_needed`](Self::records_needed)
-    /// gives the exact count of a built tree.
+    /// Most records a tree over `n` primitives can need: a header holding the
+    /// root, then one per record of the collapse. A record that opens an inner
+    /// child absorbs at least two inner nodes, so from three primitives on
+    /// `n - 1` records suffice; two primitives in two leaves need two (the
+    /// header and the root's record), one primitive one. A `const fn` to size
+    /// `static` storage; [`records_needed`](Self::records_needed) gives the
+    /// exact count of a built tree.
     ///
     /// ```
     /// use bvhkit::layout::{QuantizedWide, QuantNode};
@@ -185,8 +188,10 @@ impl<'a> QuantizedWide<'a> {
     /// assert_eq!(QuantizedWide::max_records(256), 255);
     /// ```
     pub const fn max_records(n: usize) -> usize {
-        if n > 1 {
+        if n > 2 {
             n - 1
+        } else if n == 2 {
+            2
         } else {
             1
         }

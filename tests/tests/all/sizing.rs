@@ -160,3 +160,31 @@ fn pair_queries_across_the_small_stack_limit_match_brute_force() {
         "{depths:?}"
     );
 }
+
+/// Found by the property test above on a CI run: two primitives split into
+/// two leaves need two wide records (the header holding the root, and the
+/// root's record), where `max_records(2)` said 1. From three primitives on,
+/// `n - 1` holds: a record that opens an inner child absorbs two inner
+/// nodes, and only a root whose children are both leaves absorbs one.
+#[test]
+fn two_primitives_in_two_leaves_fit_the_wide_bound() {
+    let zero = Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    let apart = |x: f32| Triangle::new(Vec3::X * x, Vec3::X * x + Vec3::Y, Vec3::X * x + Vec3::Z);
+    for prims in [vec![zero, zero], vec![apart(0.0), apart(5.0)]] {
+        for n in 1..=prims.len() {
+            let cfg = TopDown::median().with_max_leaf_size(1);
+            let mut nodes = vec![Node::<Aabb>::ZERO; max_nodes(n)];
+            let mut idx = vec![0u32; cfg.index_capacity(n)];
+            let bvh = cfg.build(&prims[..n], &mut nodes, &mut idx).unwrap();
+            let (wide, quantized) = (
+                Wide::records_needed(&bvh).unwrap(),
+                QuantizedWide::records_needed(&bvh).unwrap(),
+            );
+            assert!(wide <= Wide::max_records(n), "{n}: {wide} wide records");
+            assert!(
+                quantized <= QuantizedWide::max_records(n),
+                "{n}: {quantized}"
+            );
+        }
+    }
+}
