@@ -11,7 +11,7 @@
 use std::collections::BTreeSet;
 use std::io::Read;
 
-use bvhkit::{brute_force, Exact, Ray, Rigid, Triangle};
+use bvhkit::{brute_force, Aabb, Exact, Ray, Rigid, Triangle};
 
 #[path = "../../tests/embedded/src/scene.rs"]
 #[allow(dead_code)]
@@ -52,14 +52,18 @@ fn digest(f: impl FnOnce(&mut dyn FnMut(u32, u32)) -> usize) -> (usize, u32) {
 
 fn main() {
     let set = std::env::args().nth(1).unwrap_or_else(|| "minimal".into());
-    if !["minimal", "typical", "everything"].contains(&set.as_str()) {
-        eprintln!("usage: embedded_check minimal|typical|everything < firmware.log");
+    if !["minimal", "typical", "everything", "boxes"].contains(&set.as_str()) {
+        eprintln!("usage: embedded_check minimal|typical|everything|boxes < firmware.log");
         std::process::exit(2);
     }
     let mut log = String::new();
     std::io::stdin()
         .read_to_string(&mut log)
         .expect("read the firmware log");
+    if set == "boxes" {
+        check_boxes(&log);
+        return;
+    }
 
     let mut a =
         [Triangle::new(Default::default(), Default::default(), Default::default()); scene::N];
@@ -153,6 +157,73 @@ fn main() {
         }
         eprintln!(
             "embedded demo ({set}): {} problems, {checked} answers checked",
+            failures.len()
+        );
+        std::process::exit(1);
+    }
+}
+
+/// The `boxes` firmware: each frame's pairs and rays against brute force,
+/// every line present.
+fn check_boxes(log: &str) {
+    let mut want = std::collections::BTreeMap::new();
+    for f in 0..scene::FRAMES {
+        let boxes: Vec<Aabb> = (0..scene::BOXES).map(|i| scene::moving_box(i, f)).collect();
+        let (n, d) = digest(|g| brute_force::self_pairs(&boxes, g));
+        want.insert(format!("boxpairs f{f}"), format!("{n} {d:08x}"));
+        for r in 0..scene::BOX_RAYS {
+            let (o, dir) = scene::box_ray(r, f);
+            let ray = Ray::new(o, dir, f32::INFINITY).unwrap();
+            let hit = match brute_force::ray_closest(&boxes, &ray) {
+                Some(h) => format!("{} {:08x}", h.prim, h.t.to_bits()),
+                None => "none 0".into(),
+            };
+            want.insert(format!("boxray f{f} {r}"), hit);
+        }
+    }
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for line in log.lines() {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let key_len = match f.first() {
+            Some(&"error") | Some(&"panic") => {
+                failures.push(format!("firmware reported: {line}"));
+                continue;
+            }
+            Some(&"boxpairs") => 2,
+            Some(&"boxray") => 3,
+            _ => continue,
+        };
+        if f.len() != key_len + 2 {
+            failures.push(format!("malformed line: {line}"));
+            continue;
+        }
+        let key = f[..key_len].join(" ");
+        let Some(expected) = want.remove(&key) else {
+            failures.push(format!("unexpected or repeated line: {line}"));
+            continue;
+        };
+        checked += 1;
+        let got = f[key_len..].join(" ");
+        if got != expected {
+            failures.push(format!("{line}\n    host (brute force): {expected}"));
+        }
+    }
+    failures.extend(want.keys().map(|k| format!("missing line: {k}")));
+    if failures.is_empty() {
+        println!(
+            "embedded demo (boxes): {checked} answers match the host's brute force \
+             ({} frames of {} boxes, {} rays each)",
+            scene::FRAMES,
+            scene::BOXES,
+            scene::BOX_RAYS
+        );
+    } else {
+        for f in &failures {
+            eprintln!("MISMATCH {f}");
+        }
+        eprintln!(
+            "embedded demo (boxes): {} problems, {checked} answers checked",
             failures.len()
         );
         std::process::exit(1);

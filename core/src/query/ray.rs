@@ -175,25 +175,30 @@ impl RayTarget for Sphere {
 
 impl RayTarget for Aabb {
     /// Entry point, or `t = 0` when the ray starts inside.
+    ///
+    /// In `f32`, so that a device with an `f32`-only FPU runs it in hardware:
+    /// each slab bound `(plane - o) / d` is two correctly rounded operations
+    /// on exact inputs, within 2 ulp of its exact value, and the tree's node
+    /// test widens its own bounds by more than that (`WIDEN`), so it never
+    /// rejects a box this test hits nor enters later than this test says.
     fn ray_hit(&self, ray: &Ray) -> Option<f32> {
-        let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
-        let (lo, hi) = (self.min.as_dvec3(), self.max.as_dvec3());
-        let (mut t0, mut t1) = (0.0f64, ray.t_max as f64);
+        let (o, d) = (ray.origin, ray.dir);
+        let (mut t0, mut t1) = (0.0f32, ray.t_max);
         for k in 0..3 {
             if d[k] == 0.0 {
-                if o[k] < lo[k] || o[k] > hi[k] {
+                if o[k] < self.min[k] || o[k] > self.max[k] {
                     return None;
                 }
                 continue;
             }
-            let (a, b) = ((lo[k] - o[k]) / d[k], (hi[k] - o[k]) / d[k]);
+            let (a, b) = ((self.min[k] - o[k]) / d[k], (self.max[k] - o[k]) / d[k]);
             t0 = t0.max(a.min(b));
             t1 = t1.min(a.max(b));
             if t0 > t1 {
                 return None;
             }
         }
-        within(t0, ray)
+        Some(t0)
     }
 }
 

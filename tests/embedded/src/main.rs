@@ -9,8 +9,10 @@
 #![no_std]
 #![no_main]
 // The baseline build (no feature) leaves the scene and the clock unused.
-#![cfg_attr(not(feature = "minimal"), allow(dead_code))]
+#![cfg_attr(not(any(feature = "minimal", feature = "boxes")), allow(dead_code))]
 
+// The boxes set uses only the moving boxes of the scene.
+#[cfg_attr(not(feature = "minimal"), allow(dead_code))]
 mod scene;
 
 use core::ptr::addr_of_mut;
@@ -170,16 +172,20 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     }
 }
 
-#[cfg(not(feature = "minimal"))]
+#[cfg(not(any(feature = "minimal", feature = "boxes")))]
 fn run(_clock: &Clock) -> bool {
     hprintln!("baseline: no bvhkit work");
     true
 }
 
-#[cfg(feature = "minimal")]
+#[cfg(any(feature = "minimal", feature = "boxes"))]
 #[inline(never)]
 fn run(clock: &Clock) -> bool {
-    match demo(clock) {
+    #[cfg(feature = "minimal")]
+    let done = demo(clock);
+    #[cfg(all(feature = "boxes", not(feature = "minimal")))]
+    let done = boxes::run(clock);
+    match done {
         Ok(()) => true,
         Err(e) => {
             print_error(e);
@@ -192,7 +198,7 @@ fn run(clock: &Clock) -> bool {
 /// table shows what each way costs: the fixed sentence by default (no
 /// formatting code), `Display` or `Debug` with `print-display` or
 /// `print-debug`.
-#[cfg(feature = "minimal")]
+#[cfg(any(feature = "minimal", feature = "boxes"))]
 #[inline(never)]
 fn print_error(e: bvhkit::Error) {
     #[cfg(feature = "print-debug")]
@@ -302,6 +308,8 @@ fn demo(clock: &Clock) -> Result<(), bvhkit::Error> {
     Ok(())
 }
 
+#[cfg(feature = "boxes")]
+mod boxes;
 #[cfg(feature = "everything")]
 mod everything;
 #[cfg(feature = "typical")]

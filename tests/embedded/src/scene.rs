@@ -75,3 +75,40 @@ pub fn mix(i: u32, j: u32) -> u32 {
     let h = i.wrapping_mul(0x9E37_79B1) ^ j.wrapping_mul(0x85EB_CA77).rotate_left(13);
     h ^ (h >> 15)
 }
+
+/// Moving boxes of the `boxes` firmware (an engine's broad phase on a
+/// microcontroller): `BOXES` boxes, `FRAMES` frames, `BOX_RAYS` rays a frame.
+pub const BOXES: usize = 64;
+#[allow(dead_code)] // not used by the triangle sets
+pub const FRAMES: usize = 4;
+#[allow(dead_code)]
+pub const BOX_RAYS: usize = 4;
+
+/// Box `i` in frame `f`: a side of 1 to 2.75 on a 16 x 16 x 4 field, moving
+/// by a quarter-unit step a frame. Every coordinate is a multiple of 1/4, so
+/// host and target compute the same boxes bit for bit.
+#[allow(dead_code)]
+pub fn moving_box(i: usize, f: usize) -> bvhkit::Aabb {
+    let q = |k: usize| k as f32 * 0.25;
+    // u32, not usize: the same hash on the 32-bit target and a 64-bit host.
+    let h = ((i as u32).wrapping_mul(2_654_435_761) >> 7) as usize;
+    let lo = Vec3::new(
+        q((h % 61) + f * (1 + i % 3)),
+        q((h / 61 % 59) + f * (i % 2)),
+        q((h / 3599 % 13) + f * (i % 5 / 3)),
+    );
+    let side = Vec3::new(q(4 + h % 8), q(4 + h / 8 % 8), q(4 + h / 64 % 8));
+    bvhkit::Aabb::new(lo, lo + side)
+}
+
+/// Ray `r` of frame `f` through the box field: along `x`, `y` or a diagonal.
+#[allow(dead_code)]
+pub fn box_ray(r: usize, f: usize) -> (Vec3, Vec3) {
+    let y = 1.0 + (r * 5 + f * 3) as f32;
+    match r % 4 {
+        0 => (Vec3::new(-5.0, y, 1.5), Vec3::X),
+        1 => (Vec3::new(y, -5.0, 2.0), Vec3::Y),
+        2 => (Vec3::new(-5.0, -5.0, 1.0), Vec3::new(1.0, 1.0, 0.125)),
+        _ => (Vec3::new(y, 30.0, 0.5), Vec3::new(0.25, -1.0, 0.0)),
+    }
+}

@@ -241,3 +241,75 @@ fn a_ray_in_a_triangles_plane_never_hits_outside_its_box() {
         assert!(b.distance_squared(p) < 1e-12, "hit at {p} outside {b:?}");
     }
 }
+
+/// Boxes as primitives (a broad phase's rays): random boxes, some far from
+/// the origin, some flat or tiny, and rays that start on a face's plane,
+/// run along faces or aim at a corner. The box's own ray test (`f32`) and the
+/// tree's node test must agree on every hit: the tree may never prune a box
+/// its primitive test hits, nor report a later entry.
+fn box_scene() -> impl Strategy<Value = Vec<Aabb>> {
+    let coord = |scale: f32| (-8i32..8).prop_map(move |k| k as f32 * scale);
+    (
+        prop_oneof![Just(0.25f32), Just(1.0), Just(1e-3), Just(37.5)],
+        prop_oneof![Just(0.0f32), Just(1e4), Just(-3e6)],
+    )
+        .prop_flat_map(move |(scale, shift)| {
+            prop::collection::vec(
+                (
+                    (coord(scale), coord(scale), coord(scale)),
+                    (0..4i32, 0..4i32, 0..4i32),
+                ),
+                1..40,
+            )
+            .prop_map(move |v| {
+                v.into_iter()
+                    .map(|((x, y, z), (a, b, c))| {
+                        let lo = Vec3::new(x, y, z) + Vec3::splat(shift);
+                        let side = Vec3::new(a as f32, b as f32, c as f32) * scale;
+                        Aabb::new(lo, lo + side)
+                    })
+                    .collect()
+            })
+        })
+}
+
+proptest! {
+    #![proptest_config(proptest_config(64))]
+
+    #[test]
+    fn rays_on_box_primitives_match_brute_force(
+        boxes in box_scene(), pick in 0..1000usize, corner in 0..8usize,
+        dir in direction(), aim in any::<bool>(), leaf in 1..5u32,
+    ) {
+        let cfg = TopDown::default().with_max_leaf_size(leaf);
+        let (nodes, idx, _) = build::<Aabb, _>(&cfg, &boxes).unwrap();
+        let tree = open(&nodes, &idx, &boxes);
+        let target = boxes[pick % boxes.len()];
+        let c = Vec3::new(
+            if corner & 1 == 0 { target.min.x } else { target.max.x },
+            if corner & 2 == 0 { target.min.y } else { target.max.y },
+            if corner & 4 == 0 { target.min.z } else { target.max.z },
+        );
+        let ray = if aim {
+            // From outside the scene, straight at a corner of one box.
+            let from = c - dir * (region_in_boxes(&boxes) + 1.0);
+            Ray::new(from, c - from, f32::INFINITY)
+        } else {
+            // From a corner, along `dir`: on a face plane, often along a face.
+            Ray::new(c, dir, f32::INFINITY)
+        };
+        let Ok(ray) = ray else { return Ok(()) };
+        let want = brute_force::ray_closest(&boxes, &ray);
+        for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+            let got = tree.cast_ray(&boxes, &ray, order, ()).unwrap();
+            prop_assert_eq!(got, want, "{:?} ray {:?}", order, ray);
+        }
+        prop_assert_eq!(tree.ray_hits_any(&boxes, &ray, ()).unwrap().is_some(), want.is_some());
+    }
+}
+
+/// The scene's largest extent.
+fn region_in_boxes(boxes: &[Aabb]) -> f32 {
+    let all = boxes.iter().fold(boxes[0], |a, b| a.union(b));
+    all.extent().max_element()
+}
