@@ -801,6 +801,18 @@ where
         self.stack_from::<D, N>(rule, self.a.root(), self.b.root())
     }
 
+    /// [`stack_from`](Self::stack_from), out of line: one frame per stack
+    /// size, so a caller choosing between sizes holds only the one in use.
+    #[inline(never)]
+    pub(super) fn stack_between<D: DescentRule, const N: usize>(
+        &mut self,
+        rule: &D,
+        ra: u32,
+        rb: u32,
+    ) -> Result<Flow, Error> {
+        self.stack_from::<D, N>(rule, ra, rb)
+    }
+
     /// [`stack`](Self::stack) from A's node `ra` against B's node `rb`
     /// instead of the roots (a self query walks sibling subtrees).
     #[inline(always)]

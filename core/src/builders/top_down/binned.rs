@@ -21,6 +21,7 @@ impl LaneBin {
         min: Vec3A::splat(f32::INFINITY),
         max: Vec3A::splat(f32::NEG_INFINITY),
     };
+
     /// `Aabb::union`'s operand order, lane by lane.
     #[inline(always)]
     pub(super) fn union(&self, other: &LaneBin) -> LaneBin {
@@ -42,7 +43,42 @@ impl LaneBin {
     }
 }
 
-/// The fast path: one pass bins every primitive along x, y and z at once.
+/// The fast path: binned SAH along the axes in `axes`, with bin arrays of
+/// `N` entries (`k <= N` of them used). Dispatches, without a frame of its
+/// own, to one pass over all three axes or to one axis at a time
+/// ([`ONE_PASS`]).
+#[inline(always)]
+pub(super) fn plan_binned<S: Source, const N: usize>(
+    src: &S,
+    range: &[S::Item],
+    task: &Task,
+    k: usize,
+    axes: [bool; 3],
+    norm: &Norm,
+) -> Option<Plan> {
+    if ONE_PASS || axes != [true; 3] {
+        plan_binned_sah::<S, N>(src, range, task, k, axes, norm)
+    } else {
+        let scale = bin_scales(&task.centroids, k.min(N), axes);
+        plan_axis_by_axis::<S, N>(src, range, task, k, scale, norm)
+    }
+}
+
+/// Bins per unit of length along each axis: `k` bins over the centroids'
+/// extent, 0 where the axis is off or the extent is 0 (nothing to split).
+#[inline(always)]
+fn bin_scales(c: &Aabb, k: usize, axes: [bool; 3]) -> [f32; 3] {
+    let ext = c.extent();
+    core::array::from_fn(|a| {
+        if ext[a] > 0.0 && axes[a] {
+            k as f32 / ext[a]
+        } else {
+            0.0
+        }
+    })
+}
+
+/// One pass bins every primitive along x, y and z at once.
 /// Not inlined, so that only the bin array of the size in use is on the
 /// stack (inlined, all four sizes' frames add up: 4 KiB on a Cortex-M4).
 #[inline(never)]
@@ -56,15 +92,7 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
 ) -> Option<Plan> {
     let k = k.min(N);
     let c = &task.centroids;
-    let ext = c.extent();
-    let mut scale = [0.0f32; 3];
-    for a in 0..3 {
-        scale[a] = if ext[a] > 0.0 && axes[a] {
-            k as f32 / ext[a]
-        } else {
-            0.0
-        };
-    }
+    let scale = bin_scales(c, k, axes);
     if axes != [true; 3] {
         // One axis: bin only along it.
         let a = axes.iter().position(|&x| x)?;
@@ -147,6 +175,109 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
     })
 }
 
+/// Whether the fast path bins x, y and z in one pass (three rows of bins on
+/// the stack, 1.7 KiB at 16 bins) or one axis at a time (one row, a third of
+/// the stack, three passes over the primitives). One pass where 4-lane
+/// registers make it pay (x86, Arm64, WebAssembly); one axis at a time on
+/// the rest, microcontrollers above all, where the stack is the budget and
+/// a 4-lane value is four scalar operations anyway. Both give the same plan,
+/// hence the same tree, bit for bit (a unit test compares them).
+const ONE_PASS: bool = cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "x86",
+    target_arch = "aarch64",
+    target_arch = "wasm32"
+));
+
+/// The fast path one axis at a time: bins one row, scores it, and keeps the
+/// best boundary with its two halves' boxes, with the one-pass path's
+/// arithmetic (bin index, unions, scores and the first-of-equal-costs rule
+/// within and across axes), so the plan is the one that path makes.
+#[inline(never)]
+fn plan_axis_by_axis<S: Source, const N: usize>(
+    src: &S,
+    range: &[S::Item],
+    task: &Task,
+    k: usize,
+    scale: [f32; 3],
+    norm: &Norm,
+) -> Option<Plan> {
+    let c = &task.centroids;
+    let k = k.min(N);
+    // (cost, axis, boundary, left count, halves)
+    let mut pick: Option<(f32, usize, usize, u32, [LaneBin; 2])> = None;
+    for (a, &sc) in scale.iter().enumerate() {
+        if sc == 0.0 {
+            continue;
+        }
+        let Some((cost, boundary, mid, halves)) =
+            score_axis::<S, N>(src, range, a, c.min[a], sc, k, norm)
+        else {
+            continue;
+        };
+        if pick.is_none_or(|(b, ..)| cost < b) {
+            pick = Some((cost, a, boundary, mid, halves));
+        }
+    }
+    let (_, a, boundary, mid, halves) = pick?;
+    Some(Plan::Axis {
+        axis: a,
+        lo: c.min[a],
+        scale: scale[a],
+        k,
+        boundary,
+        known: Some((mid as usize, [halves[0].aabb(), halves[1].aabb()])),
+    })
+}
+
+/// One axis of [`plan_axis_by_axis`]: bins `range` along axis `a` with the
+/// one-pass path's bin index (`((lo + hi) / 2 - lo_c) * scale`, clamped to
+/// `[0, k - 1]`, then truncated), and returns the best boundary's cost, the
+/// boundary, the left count and the two halves. Out of line, so that its
+/// one row of bins is the only one on the stack.
+#[inline(never)]
+fn score_axis<S: Source, const N: usize>(
+    src: &S,
+    range: &[S::Item],
+    a: usize,
+    lo_c: f32,
+    scale: f32,
+    k: usize,
+    norm: &Norm,
+) -> Option<(f32, usize, u32, [LaneBin; 2])> {
+    // Two `let`s, not one of a tuple: the tuple is built in a temporary
+    // and copied, which doubles the frame on a Cortex-M4.
+    let mut row = [LaneBin::EMPTY; N];
+    let mut count = [0u32; N];
+    let top = k.clamp(1, N) - 1;
+    let top_f = top as f32;
+    for &i in range {
+        let (lo, hi) = src.lanes(i);
+        let t = ((lo[a] * 0.5 + hi[a] * 0.5) - lo_c) * scale;
+        let t = t.max(0.0).min(top_f);
+        let j = (t as i32 as usize).min(top);
+        let bin = &mut row[j];
+        bin.min = lo.min(bin.min);
+        bin.max = hi.max(bin.max);
+        count[j] += 1;
+    }
+    let (row, count) = (&row[..k], &count[..k]);
+    let (cost, _, boundary) = best_of_rows(
+        [row; 3],
+        [count; 3],
+        range.len(),
+        [true, false, false],
+        norm,
+    )?;
+    let (mut halves, mut mid) = ([LaneBin::EMPTY; 2], 0u32);
+    for j in 0..k {
+        let side = usize::from(j >= boundary);
+        halves[side] = halves[side].union(&row[j]);
+        mid += if side == 0 { count[j] } else { 0 };
+    }
+    Some((cost, boundary, mid, halves))
+}
+
 /// The SAH-best boundary over rows of bins (one row per axis tried; bin `j`
 /// of row `a` holds `counts[a][j]` primitives, `n` in all, every row of the
 /// same length), as (cost, row, boundary). Each row is swept once from the
@@ -193,4 +324,112 @@ fn best_of_rows(
         }
     }
     pick
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::partition::bounds_of;
+    use super::super::source::Indexed;
+    use super::*;
+
+    /// A small deterministic generator (no dependency in core's tests).
+    fn next(state: &mut u64) -> f32 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((*state >> 40) as f32) / (1u64 << 24) as f32
+    }
+
+    /// Both ways of binning choose the same axis, boundary, left count and
+    /// halves on every node shape tried (clustered, flat along an axis,
+    /// coincident centroids, far from the origin), for every bin array size.
+    #[test]
+    fn one_axis_at_a_time_plans_what_one_pass_plans() {
+        let mut state = 7u64;
+        let mut compared = 0;
+        for case in 0..400 {
+            let n = 2 + case % 37;
+            let offset = [0.0, 1.0e4, -3.0e6][case % 3];
+            let flat = case % 5; // 0..2: that axis has one coordinate
+            let boxes: [Aabb; 40] = core::array::from_fn(|_| {
+                let mut p = Vec3::new(next(&mut state), next(&mut state), next(&mut state));
+                if flat < 3 {
+                    p[flat] = 0.5;
+                }
+                if case % 7 == 0 {
+                    p = (p * 4.0).floor(); // many equal centroids
+                }
+                let p = p * 10.0 + Vec3::splat(offset);
+                Aabb::new(p, p + Vec3::splat(next(&mut state)))
+            });
+            let prims = &boxes[..n];
+            let src = Indexed(prims);
+            let idx: [u32; 40] = core::array::from_fn(|i| i as u32);
+            let range = &idx[..n];
+            let (bounds, centroids) = bounds_of(&src, range);
+            let task = Task {
+                node: 0,
+                start: 0,
+                end: n as u32,
+                depth: 0,
+                bounds,
+                centroids,
+                tight: true,
+            };
+            let norm = Norm::new(&bounds);
+            for k in [2usize, 4, 7, 8, 12, 16, 32] {
+                let scale = bin_scales(&centroids, k.min(32), [true; 3]);
+                let (one, each) = match k {
+                    0..=4 => (
+                        plan_binned_sah::<_, 4>(&src, range, &task, k, [true; 3], &norm),
+                        plan_axis_by_axis::<_, 4>(&src, range, &task, k, scale, &norm),
+                    ),
+                    5..=8 => (
+                        plan_binned_sah::<_, 8>(&src, range, &task, k, [true; 3], &norm),
+                        plan_axis_by_axis::<_, 8>(&src, range, &task, k, scale, &norm),
+                    ),
+                    9..=16 => (
+                        plan_binned_sah::<_, 16>(&src, range, &task, k, [true; 3], &norm),
+                        plan_axis_by_axis::<_, 16>(&src, range, &task, k, scale, &norm),
+                    ),
+                    _ => (
+                        plan_binned_sah::<_, MAX_BINS>(&src, range, &task, k, [true; 3], &norm),
+                        plan_axis_by_axis::<_, MAX_BINS>(&src, range, &task, k, scale, &norm),
+                    ),
+                };
+                let (one, each) = (plan_bits(&one), plan_bits(&each));
+                assert_eq!(one, each, "case {case}, {k} bins");
+                compared += usize::from(one.is_some());
+            }
+        }
+        assert!(compared > 2000, "only {compared} plans compared");
+    }
+
+    /// Every field of a fast-path plan, floats as bits (so `-0.0` and
+    /// `0.0` differ).
+    type Bits = (usize, u32, u32, usize, usize, usize, [u32; 12]);
+
+    fn plan_bits(p: &Option<Plan>) -> Option<Bits> {
+        let Some(Plan::Axis {
+            axis,
+            lo,
+            scale,
+            k,
+            boundary,
+            known,
+        }) = *p
+        else {
+            return None;
+        };
+        let (mid, [l, r]) = known.expect("the fast path knows its halves");
+        let mut b = [0u32; 12];
+        for (slot, v) in b.iter_mut().zip(
+            [l.min, l.max, r.min, r.max]
+                .iter()
+                .flat_map(|v| v.to_array()),
+        ) {
+            *slot = v.to_bits();
+        }
+        Some((axis, lo.to_bits(), scale.to_bits(), k, boundary, mid, b))
+    }
 }

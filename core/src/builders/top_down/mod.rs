@@ -90,7 +90,7 @@ struct Task {
     start: u32,
     end: u32,
     /// At most `MAX_DEPTH`: 16 bits keep the task, with `tight`, at 64
-    /// bytes (the driver's stack holds 33 of them).
+    /// bytes (each level of the build's recursion holds two).
     depth: u16,
     bounds: Aabb,
     /// A box containing the primitives' centroids: their own box when
@@ -413,69 +413,115 @@ impl TopDown {
         nodes: &mut [Node<B>],
         idx: &mut [S::Item],
         scratch: &mut [u32],
-        mut task: Task,
+        task: Task,
         report: &mut BuildReport,
     ) -> Result<(usize, u32), Error> {
-        const STACK: usize = 33; // >= log2(MAX_PRIMITIVES) + 2
-        let mut stack = [task; STACK];
-        let mut top = 0;
-        let mut used = task.node as usize + 1;
-        let mut max_depth = 0u32;
-        loop {
-            let (s, e) = (task.start as usize, task.end as usize);
-            let (bv, halves) = self.step(src, &mut idx[s..e], scratch, &mut task, report);
-            match halves {
-                None => {
-                    nodes[task.node as usize] = Node {
-                        bv,
-                        first: task.start,
-                        count: (e - s) as u32,
-                    };
-                    max_depth = max_depth.max(u32::from(task.depth));
-                    if top == 0 {
-                        break;
-                    }
-                    top -= 1;
-                    task = stack[top];
-                }
-                Some(h) => {
-                    if used + 2 > nodes.len() {
-                        return Err(Error::NodeCapacity {
-                            needed: max_nodes(idx.len()),
-                            available: nodes.len(),
-                        });
-                    }
-                    let left = used as u32;
-                    used += 2;
-                    nodes[task.node as usize] = Node {
-                        bv,
-                        first: left,
-                        count: 0,
-                    };
-                    let (l, r) = task.children(left, &h);
-                    // Defer the larger half and continue with the smaller one (as
-                    // quicksort recurses on the smaller side): everything pushed
-                    // before the deferred half is popped lies inside a range at
-                    // most half as large, so the stack stays below log2(n) + 1.
-                    let (next, later) = if l.end - l.start <= r.end - r.start {
-                        (l, r)
-                    } else {
-                        (r, l)
-                    };
-                    if top == STACK {
-                        return Err(Error::StackOverflow {
-                            depth: top,
-                            capacity: STACK,
-                        });
-                    }
-                    stack[top] = later;
-                    top += 1;
-                    task = next;
-                }
-            }
-        }
-        Ok((used, max_depth))
+        let mut out = Emitted {
+            used: task.node as usize + 1,
+            depth: 0,
+        };
+        let total = idx.len();
+        let mut store = Store {
+            nodes,
+            idx,
+            scratch,
+            total,
+        };
+        self.subtree(src, &mut store, &task, report, &mut out)?;
+        Ok((out.used, out.depth))
     }
+
+    /// One subtree: splits `task` until a leaf, recursing into the smaller
+    /// half and continuing with the larger one (as quicksort does), so the
+    /// recursion is at most log2(n) + 1 calls deep. Recursion, not a fixed
+    /// stack of pending tasks: the stack in use grows with the depth this
+    /// build reaches (a few hundred bytes for 64 boxes on a Cortex-M4), where
+    /// a fixed stack sized for the largest possible input (33 tasks, 2 KiB)
+    /// cost every build the same. The nodes come out in the order the loop
+    /// with a stack gave: the same tree, bit for bit.
+    fn subtree<S: Source, B: BoundingVolume>(
+        &self,
+        src: &S,
+        store: &mut Store<'_, S::Item, B>,
+        task: &Task,
+        report: &mut BuildReport,
+        out: &mut Emitted,
+    ) -> Result<(), Error> {
+        // `pair` holds the task to split next (`pair[which]`), then its two
+        // halves, the smaller first: one array, so each level of the
+        // recursion holds two tasks and nothing else.
+        let mut pair = [*task, *task];
+        let mut which = 0;
+        while self.node(src, store, &mut pair, which, report, out)? {
+            self.subtree(src, store, &pair[0], report, out)?;
+            which = 1;
+        }
+        Ok(())
+    }
+
+    /// One node of [`subtree`](Self::subtree): `pair[which]`'s. Writes it
+    /// (a leaf, or an inner node with two fresh children) and, for an inner
+    /// node, puts its two halves' tasks in `pair`, the smaller first, and
+    /// returns `true`. Out of line, so that the bins, planes and halves of
+    /// the decision are gone before the recursion goes deeper.
+    #[inline(never)]
+    fn node<S: Source, B: BoundingVolume>(
+        &self,
+        src: &S,
+        store: &mut Store<'_, S::Item, B>,
+        pair: &mut [Task; 2],
+        which: usize,
+        report: &mut BuildReport,
+        out: &mut Emitted,
+    ) -> Result<bool, Error> {
+        let mut task = pair[which];
+        let (s, e) = (task.start as usize, task.end as usize);
+        let (bv, halves) = self.step(src, &mut store.idx[s..e], store.scratch, &mut task, report);
+        let Some(h) = halves else {
+            store.nodes[task.node as usize] = Node {
+                bv,
+                first: task.start,
+                count: (e - s) as u32,
+            };
+            out.depth = out.depth.max(u32::from(task.depth));
+            return Ok(false);
+        };
+        if out.used + 2 > store.nodes.len() {
+            return Err(Error::NodeCapacity {
+                needed: max_nodes(store.total),
+                available: store.nodes.len(),
+            });
+        }
+        let left = out.used as u32;
+        out.used += 2;
+        store.nodes[task.node as usize] = Node {
+            bv,
+            first: left,
+            count: 0,
+        };
+        let (l, r) = task.children(left, &h);
+        *pair = if l.end - l.start <= r.end - r.start {
+            [l, r]
+        } else {
+            [r, l]
+        };
+        Ok(true)
+    }
+}
+
+/// The storage a build writes: nodes, the index array (and its scratch),
+/// and the primitive count (for the capacity error).
+struct Store<'s, I, B> {
+    nodes: &'s mut [Node<B>],
+    idx: &'s mut [I],
+    scratch: &'s mut [u32],
+    total: usize,
+}
+
+/// What a build has emitted so far: nodes used, deepest leaf's depth.
+struct Emitted {
+    used: usize,
+    depth: u32,
 }
 
 impl Task {

@@ -4,7 +4,7 @@
 //! criterion.
 
 use super::axes::directions;
-use super::binned::plan_binned_sah;
+use super::binned::plan_binned;
 use super::criteria::{cost, Norm};
 use super::partition::bounds_of;
 use super::source::{centroid, Source};
@@ -108,10 +108,10 @@ pub(super) fn plan<S: Source, B: BoundingVolume>(
         // keeps the fixed cost of the many small nodes near the leaves low.
         let k = (k as usize).min(range.len().max(2));
         return match k {
-            0..=4 => plan_binned_sah::<S, 4>(src, range, task, k, axes, norm),
-            5..=8 => plan_binned_sah::<S, 8>(src, range, task, k, axes, norm),
-            9..=16 => plan_binned_sah::<S, 16>(src, range, task, k, axes, norm),
-            _ => plan_binned_sah::<S, MAX_BINS>(src, range, task, k, axes, norm),
+            0..=4 => plan_binned::<S, 4>(src, range, task, k, axes, norm),
+            5..=8 => plan_binned::<S, 8>(src, range, task, k, axes, norm),
+            9..=16 => plan_binned::<S, 16>(src, range, task, k, axes, norm),
+            _ => plan_binned::<S, MAX_BINS>(src, range, task, k, axes, norm),
         };
     }
     #[cfg(feature = "strategies")]

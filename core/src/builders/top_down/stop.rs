@@ -73,13 +73,15 @@ impl TopDown {
         let count_blind = !self.partition.weighs_counts();
         let lopsided = |h: &Halves| count_blind && n >= 100 && h.mid.min(n - h.mid) * 100 < n;
         // At most twice: when the bins spanned the node's box, once more
-        // over the centroids' own box. (One call site: each holds its own
-        // halves on the stack.)
+        // over the centroids' own box. Every attempt lands in the one `h`:
+        // a separate `Option<Halves>` per attempt (104 bytes each) would
+        // each take its own stack slot.
+        let good = |h: &Option<Halves>| h.as_ref().is_some_and(|h| acceptable(h) && !lopsided(h));
+        let mut h;
         loop {
-            if let Some(h) = attempt(range, task, self.axis, self.split, self.partition) {
-                if acceptable(&h) && !lopsided(&h) {
-                    return Some(h);
-                }
+            h = attempt(range, task, self.axis, self.split, self.partition);
+            if good(&h) {
+                return h;
             }
             if task.tight {
                 break;
@@ -88,46 +90,43 @@ impl TopDown {
         }
         report.fallback_splits += 1;
         if self.axis != AxisChoice::BestOfXyz {
-            if let Some(h) = attempt(
+            h = attempt(
                 range,
                 task,
                 AxisChoice::BestOfXyz,
                 self.split,
                 self.partition,
-            ) {
-                if acceptable(&h) && !lopsided(&h) {
-                    return Some(h);
-                }
+            );
+            if good(&h) {
+                return h;
             }
         }
         if count_blind {
             // Another criterion: binned SAH, which prices each side's count.
-            let sah = attempt(
+            h = attempt(
                 range,
                 task,
                 AxisChoice::BestOfXyz,
                 SplitPoint::Bins(16),
                 Partition::SurfaceArea,
             );
-            if let Some(h) = sah {
-                if acceptable(&h) {
-                    return Some(h);
-                }
+            if h.as_ref().is_some_and(acceptable) {
+                return h;
             }
         }
         // The object median always separates by count, even identical centroids.
         let dir = longest_direction(task);
-        let forced = apply(
+        h = Some(apply(
             src,
             range,
             Plan::Order {
                 dir,
                 mid: range.len() / 2,
             },
-        );
+        ));
         match self.on_failure {
-            OnFailure::ForceSplit => Some(forced),
-            OnFailure::Leaf => acceptable(&forced).then_some(forced),
+            OnFailure::ForceSplit => h,
+            OnFailure::Leaf => h.filter(acceptable),
         }
     }
 }
