@@ -156,6 +156,7 @@ fn footprint(book_src: &Path) -> Result<Figure, FigureError> {
                 "minimal" => colour(0),
                 n if n.starts_with("minimal,") => colour(4),
                 "typical" => colour(1),
+                "boxes" => colour(2),
                 _ => colour(3),
             };
             let kib = v as f64 / KIB;

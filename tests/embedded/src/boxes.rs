@@ -44,6 +44,13 @@ pub fn run(clock: &Clock) -> Result<(), bvhkit::Error> {
         let tree = step(clock, timed, "boxes-build", || {
             TopDown::sah().build(boxes, nodes, index)
         })?;
+        if timed {
+            hprintln!(
+                "tree boxes nodes {} depth {}",
+                tree.node_count(),
+                tree.depth()
+            );
+        }
         let mut digest = 0u32;
         let count = step(clock, timed, "boxes-pairs", || {
             SelfPairs::new(&tree, boxes)

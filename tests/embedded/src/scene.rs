@@ -78,6 +78,7 @@ pub fn mix(i: u32, j: u32) -> u32 {
 
 /// Moving boxes of the `boxes` firmware (an engine's broad phase on a
 /// microcontroller): `BOXES` boxes, `FRAMES` frames, `BOX_RAYS` rays a frame.
+#[allow(dead_code)] // not used by the triangle sets
 pub const BOXES: usize = 64;
 #[allow(dead_code)] // not used by the triangle sets
 pub const FRAMES: usize = 4;

@@ -43,12 +43,13 @@ impl LaneBin {
     }
 }
 
-/// The fast path: binned SAH along the axes in `axes`, with bin arrays of
-/// `N` entries (`k <= N` of them used). Dispatches, without a frame of its
-/// own, to one pass over all three axes or to one axis at a time
-/// ([`ONE_PASS`]).
+/// The fast path: binned SAH with `k` bins along the axes in `axes`. Bin
+/// arrays come in four sizes (4, 8, 16, [`MAX_BINS`]), the smallest that
+/// holds `k`, each in its own out-of-line function, so that only the array
+/// in use is on the stack. All three axes are binned in one pass or one
+/// axis at a time ([`ONE_PASS`]).
 #[inline(always)]
-pub(super) fn plan_binned<S: Source, const N: usize>(
+pub(super) fn plan_binned<S: Source>(
     src: &S,
     range: &[S::Item],
     task: &Task,
@@ -56,11 +57,22 @@ pub(super) fn plan_binned<S: Source, const N: usize>(
     axes: [bool; 3],
     norm: &Norm,
 ) -> Option<Plan> {
-    if ONE_PASS || axes != [true; 3] {
-        plan_binned_sah::<S, N>(src, range, task, k, axes, norm)
+    macro_rules! sized {
+        ($f:ident) => {
+            match k {
+                0..=4 => $f::<S, 4>(src, range, task, k, axes, norm),
+                5..=8 => $f::<S, 8>(src, range, task, k, axes, norm),
+                9..=16 => $f::<S, 16>(src, range, task, k, axes, norm),
+                _ => $f::<S, MAX_BINS>(src, range, task, k, axes, norm),
+            }
+        };
+    }
+    if axes != [true; 3] {
+        plan_one_axis(src, range, task, k, axes, norm)
+    } else if ONE_PASS {
+        sized!(plan_three_axes)
     } else {
-        let scale = bin_scales(&task.centroids, k.min(N), axes);
-        plan_axis_by_axis::<S, N>(src, range, task, k, scale, norm)
+        plan_axis_by_axis(src, range, task, k, norm)
     }
 }
 
@@ -78,11 +90,99 @@ fn bin_scales(c: &Aabb, k: usize, axes: [bool; 3]) -> [f32; 3] {
     })
 }
 
-/// One pass bins every primitive along x, y and z at once.
-/// Not inlined, so that only the bin array of the size in use is on the
-/// stack (inlined, all four sizes' frames add up: 4 KiB on a Cortex-M4).
+/// One axis only ([`AxisChoice::Longest`](crate::AxisChoice::Longest)):
+/// bins along it; the partition then measures both halves. Generic over
+/// the source only; the row of bins comes from [`one_axis_sized`].
 #[inline(never)]
-pub(super) fn plan_binned_sah<S: Source, const N: usize>(
+fn plan_one_axis<S: Source>(
+    src: &S,
+    range: &[S::Item],
+    task: &Task,
+    k: usize,
+    axes: [bool; 3],
+    norm: &Norm,
+) -> Option<Plan> {
+    let k = k.min(MAX_BINS);
+    let c = &task.centroids;
+    let scale = bin_scales(c, k, axes);
+    let a = axes.iter().position(|&x| x)?;
+    if scale[a] == 0.0 {
+        return None;
+    }
+    let axis = Axis {
+        a,
+        lo: c.min[a],
+        scale: scale[a],
+    };
+    let boundary = match k {
+        0..=4 => one_axis_sized::<S, 4>(src, range, axis, k, norm),
+        5..=8 => one_axis_sized::<S, 8>(src, range, axis, k, norm),
+        9..=16 => one_axis_sized::<S, 16>(src, range, axis, k, norm),
+        _ => one_axis_sized::<S, MAX_BINS>(src, range, axis, k, norm),
+    }?;
+    Some(Plan::Axis {
+        axis: a,
+        lo: axis.lo,
+        scale: axis.scale,
+        k,
+        boundary,
+        known: None,
+    })
+}
+
+/// A row of `N` bins on the stack for [`one_axis_row`]: out of line, one
+/// small copy per size.
+#[inline(never)]
+fn one_axis_sized<S: Source, const N: usize>(
+    src: &S,
+    range: &[S::Item],
+    axis: Axis,
+    k: usize,
+    norm: &Norm,
+) -> Option<usize> {
+    let mut row = [LaneBin::EMPTY; N];
+    let mut count = [0u32; N];
+    let k = k.min(N);
+    one_axis_row(src, range, axis, &mut row[..k], &mut count[..k], norm)
+}
+
+/// Bins `range` along one axis by each box's centre (`even_bin`), and
+/// returns the SAH-best boundary.
+#[inline(never)]
+fn one_axis_row<S: Source>(
+    src: &S,
+    range: &[S::Item],
+    axis: Axis,
+    row: &mut [LaneBin],
+    count: &mut [u32],
+    norm: &Norm,
+) -> Option<usize> {
+    let k = row.len().min(count.len());
+    if k == 0 {
+        return None;
+    }
+    for &i in range {
+        let b = src.bounds(i);
+        let j = even_bin(b.center()[axis.a], axis.lo, axis.scale, k);
+        if let (Some(bin), Some(n)) = (row.get_mut(j), count.get_mut(j)) {
+            *bin = bin.union(&LaneBin::of(&b));
+            *n += 1;
+        }
+    }
+    let (row, count) = (&row[..k], &count[..k]);
+    let best = best_of_rows(
+        [row; 3],
+        [count; 3],
+        range.len(),
+        [true, false, false],
+        norm,
+    );
+    best.map(|(_, _, boundary)| boundary)
+}
+
+/// One pass bins every primitive along x, y and z at once.
+#[inline(never)]
+fn plan_three_axes<S: Source, const N: usize>(
     src: &S,
     range: &[S::Item],
     task: &Task,
@@ -93,36 +193,6 @@ pub(super) fn plan_binned_sah<S: Source, const N: usize>(
     let k = k.min(N);
     let c = &task.centroids;
     let scale = bin_scales(c, k, axes);
-    if axes != [true; 3] {
-        // One axis: bin only along it.
-        let a = axes.iter().position(|&x| x)?;
-        if scale[a] == 0.0 {
-            return None;
-        }
-        let (mut bins, mut counts) = ([[LaneBin::EMPTY; N]], [[0u32; N]]);
-        for &i in range {
-            let b = src.bounds(i);
-            let j = even_bin(b.center()[a], c.min[a], scale[a], k);
-            bins[0][j] = bins[0][j].union(&LaneBin::of(&b));
-            counts[0][j] += 1;
-        }
-        let (row, count) = (&bins[0][..k], &counts[0][..k]);
-        let best = best_of_rows(
-            [row; 3],
-            [count; 3],
-            range.len(),
-            [true, false, false],
-            norm,
-        );
-        return best.map(|(_, _, boundary)| Plan::Axis {
-            axis: a,
-            lo: c.min[a],
-            scale: scale[a],
-            k,
-            boundary,
-            known: None,
-        });
-    }
     // Bin bounds in 4-lane registers: a union is two instructions, and the
     // three bin indices come from one subtract and multiply. Each lane does
     // the scalar path's arithmetic (`Aabb::center`, `even_bin`, `Aabb::union`
@@ -193,26 +263,36 @@ const ONE_PASS: bool = cfg!(any(
 /// best boundary with its two halves' boxes, with the one-pass path's
 /// arithmetic (bin index, unions, scores and the first-of-equal-costs rule
 /// within and across axes), so the plan is the one that path makes.
+/// Generic over the source only: one copy in a firmware.
 #[inline(never)]
-fn plan_axis_by_axis<S: Source, const N: usize>(
+fn plan_axis_by_axis<S: Source>(
     src: &S,
     range: &[S::Item],
     task: &Task,
     k: usize,
-    scale: [f32; 3],
     norm: &Norm,
 ) -> Option<Plan> {
     let c = &task.centroids;
-    let k = k.min(N);
+    let k = k.min(MAX_BINS);
+    let scale = bin_scales(c, k, [true; 3]);
     // (cost, axis, boundary, left count, halves)
     let mut pick: Option<(f32, usize, usize, u32, [LaneBin; 2])> = None;
     for (a, &sc) in scale.iter().enumerate() {
         if sc == 0.0 {
             continue;
         }
-        let Some((cost, boundary, mid, halves)) =
-            score_axis::<S, N>(src, range, a, c.min[a], sc, k, norm)
-        else {
+        let axis = Axis {
+            a,
+            lo: c.min[a],
+            scale: sc,
+        };
+        let scored = match k {
+            0..=4 => score_axis::<S, 4>(src, range, axis, k, norm),
+            5..=8 => score_axis::<S, 8>(src, range, axis, k, norm),
+            9..=16 => score_axis::<S, 16>(src, range, axis, k, norm),
+            _ => score_axis::<S, MAX_BINS>(src, range, axis, k, norm),
+        };
+        let Some((cost, boundary, mid, halves)) = scored else {
             continue;
         };
         if pick.is_none_or(|(b, ..)| cost < b) {
@@ -230,36 +310,57 @@ fn plan_axis_by_axis<S: Source, const N: usize>(
     })
 }
 
-/// One axis of [`plan_axis_by_axis`]: bins `range` along axis `a` with the
-/// one-pass path's bin index (`((lo + hi) / 2 - lo_c) * scale`, clamped to
-/// `[0, k - 1]`, then truncated), and returns the best boundary's cost, the
-/// boundary, the left count and the two halves. Out of line, so that its
-/// one row of bins is the only one on the stack.
+/// One axis to bin along: its index, the bins' start and bins per unit.
+#[derive(Clone, Copy)]
+struct Axis {
+    a: usize,
+    lo: f32,
+    scale: f32,
+}
+
+/// A row of `N` bins on the stack for [`score_row`]: out of line, one small
+/// copy per size, so only the row in use is on the stack.
 #[inline(never)]
 fn score_axis<S: Source, const N: usize>(
     src: &S,
     range: &[S::Item],
-    a: usize,
-    lo_c: f32,
-    scale: f32,
+    axis: Axis,
     k: usize,
     norm: &Norm,
 ) -> Option<(f32, usize, u32, [LaneBin; 2])> {
-    // Two `let`s, not one of a tuple: the tuple is built in a temporary
-    // and copied, which doubles the frame on a Cortex-M4.
     let mut row = [LaneBin::EMPTY; N];
     let mut count = [0u32; N];
-    let top = k.clamp(1, N) - 1;
+    let k = k.min(N);
+    score_row(src, range, axis, &mut row[..k], &mut count[..k], norm)
+}
+
+/// Bins `range` along one axis into `row` (empty bins) and `count`
+/// (zeros), with the one-pass path's bin index (`((lo + hi) / 2 - lo) *
+/// scale`, clamped to `[0, k - 1]`, then truncated), and returns the best
+/// boundary's cost, the boundary, the left count and the two halves.
+#[inline(never)]
+fn score_row<S: Source>(
+    src: &S,
+    range: &[S::Item],
+    axis: Axis,
+    row: &mut [LaneBin],
+    count: &mut [u32],
+    norm: &Norm,
+) -> Option<(f32, usize, u32, [LaneBin; 2])> {
+    let k = row.len().min(count.len());
+    let top = k.checked_sub(1)?;
     let top_f = top as f32;
+    let a = axis.a;
     for &i in range {
         let (lo, hi) = src.lanes(i);
-        let t = ((lo[a] * 0.5 + hi[a] * 0.5) - lo_c) * scale;
+        let t = ((lo[a] * 0.5 + hi[a] * 0.5) - axis.lo) * axis.scale;
         let t = t.max(0.0).min(top_f);
         let j = (t as i32 as usize).min(top);
-        let bin = &mut row[j];
-        bin.min = lo.min(bin.min);
-        bin.max = hi.max(bin.max);
-        count[j] += 1;
+        if let (Some(bin), Some(n)) = (row.get_mut(j), count.get_mut(j)) {
+            bin.min = lo.min(bin.min);
+            bin.max = hi.max(bin.max);
+            *n += 1;
+        }
     }
     let (row, count) = (&row[..k], &count[..k]);
     let (cost, _, boundary) = best_of_rows(
@@ -378,25 +479,13 @@ mod tests {
             };
             let norm = Norm::new(&bounds);
             for k in [2usize, 4, 7, 8, 12, 16, 32] {
-                let scale = bin_scales(&centroids, k.min(32), [true; 3]);
-                let (one, each) = match k {
-                    0..=4 => (
-                        plan_binned_sah::<_, 4>(&src, range, &task, k, [true; 3], &norm),
-                        plan_axis_by_axis::<_, 4>(&src, range, &task, k, scale, &norm),
-                    ),
-                    5..=8 => (
-                        plan_binned_sah::<_, 8>(&src, range, &task, k, [true; 3], &norm),
-                        plan_axis_by_axis::<_, 8>(&src, range, &task, k, scale, &norm),
-                    ),
-                    9..=16 => (
-                        plan_binned_sah::<_, 16>(&src, range, &task, k, [true; 3], &norm),
-                        plan_axis_by_axis::<_, 16>(&src, range, &task, k, scale, &norm),
-                    ),
-                    _ => (
-                        plan_binned_sah::<_, MAX_BINS>(&src, range, &task, k, [true; 3], &norm),
-                        plan_axis_by_axis::<_, MAX_BINS>(&src, range, &task, k, scale, &norm),
-                    ),
+                let one = match k {
+                    0..=4 => plan_three_axes::<_, 4>(&src, range, &task, k, [true; 3], &norm),
+                    5..=8 => plan_three_axes::<_, 8>(&src, range, &task, k, [true; 3], &norm),
+                    9..=16 => plan_three_axes::<_, 16>(&src, range, &task, k, [true; 3], &norm),
+                    _ => plan_three_axes::<_, MAX_BINS>(&src, range, &task, k, [true; 3], &norm),
                 };
+                let each = plan_axis_by_axis(&src, range, &task, k, &norm);
                 let (one, each) = (plan_bits(&one), plan_bits(&each));
                 assert_eq!(one, each, "case {case}, {k} bins");
                 compared += usize::from(one.is_some());

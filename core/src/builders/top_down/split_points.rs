@@ -107,12 +107,7 @@ pub(super) fn plan<S: Source, B: BoundingVolume>(
         // More bins than primitives cannot help; a bin array sized to the node
         // keeps the fixed cost of the many small nodes near the leaves low.
         let k = (k as usize).min(range.len().max(2));
-        return match k {
-            0..=4 => plan_binned::<S, 4>(src, range, task, k, axes, norm),
-            5..=8 => plan_binned::<S, 8>(src, range, task, k, axes, norm),
-            9..=16 => plan_binned::<S, 16>(src, range, task, k, axes, norm),
-            _ => plan_binned::<S, MAX_BINS>(src, range, task, k, axes, norm),
-        };
+        return plan_binned(src, range, task, k, axes, norm);
     }
     #[cfg(feature = "strategies")]
     return plan_by_directions(src, range, scratch, task, bv, axis, split, partition, norm);
