@@ -33,8 +33,8 @@
 //! let (a, b) = (row(0.0), row(0.5));
 //!
 //! // Storage comes from the caller: at most 2n - 1 nodes and n indices.
-//! let mut nodes_a = [Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
-//! let mut nodes_b = [Node::<Aabb>::EMPTY; bvhkit::max_nodes(8)];
+//! let mut nodes_a = [Node::<Aabb>::ZERO; bvhkit::max_nodes(8)];
+//! let mut nodes_b = [Node::<Aabb>::ZERO; bvhkit::max_nodes(8)];
 //! let (mut idx_a, mut idx_b) = ([0u32; 8], [0u32; 8]);
 //! let tree_a = TopDown::default().build(&a, &mut nodes_a, &mut idx_a)?;
 //! let tree_b = TopDown::default().build(&b, &mut nodes_b, &mut idx_b)?;
@@ -81,6 +81,8 @@ pub use query::{
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};
-pub use tree::{max_nodes, Boxes4, Bvh, Content, Hierarchy, Kids, Node, Shape, MAX_DEPTH};
+pub use tree::{
+    max_nodes, max_nodes_for_leaves, Boxes4, Bvh, Content, Hierarchy, Kids, Node, Shape, MAX_DEPTH,
+};
 
 pub use glam;

@@ -30,15 +30,57 @@ pub const MAX_PRIMITIVES: usize = (u32::MAX / 2) as usize;
 ///
 /// ```
 /// assert_eq!(bvhkit::max_nodes(64), 127);
-/// // Size static storage at compile time:
-/// static mut NODES: [bvhkit::Node<bvhkit::Aabb>; bvhkit::max_nodes(64)] =
-///     [bvhkit::Node::EMPTY; bvhkit::max_nodes(64)];
+/// // Size static storage at compile time (zero bits: `.bss`, not flash):
+/// static NODES: [bvhkit::Node<bvhkit::Aabb>; bvhkit::max_nodes(64)] =
+///     [bvhkit::Node::ZERO; bvhkit::max_nodes(64)];
 /// ```
 pub const fn max_nodes(n: usize) -> usize {
     if n == 0 {
         0
     } else {
         2 * n - 1
+    }
+}
+
+/// Node count of a binary tree with `leaves` leaves: `2 * leaves - 1` (every
+/// inner node has two children), 0 for none.
+///
+/// [`max_nodes`] sizes for the worst case, one primitive per leaf; a tree
+/// with several primitives per leaf uses far fewer nodes. No builder can
+/// promise a leaf count in advance (a split may cut one primitive off), but
+/// for a scene known ahead (a static mesh in flash) the leaf count of its
+/// build is known: build it once on the host, read
+/// [`TreeStats::leaves`](crate::TreeStats) (or [`Shape::nodes`]), and size
+/// the device's array by it. The same build on the device then fits
+/// exactly; a scene that needs more nodes is an [`Error::NodeCapacity`],
+/// never a write past the array.
+///
+/// ```
+/// use bvhkit::{max_nodes, max_nodes_for_leaves, Aabb, Node, TopDown, Triangle};
+/// use bvhkit::glam::Vec3;
+/// let tris: [Triangle; 512] = core::array::from_fn(|i| {
+///     let o = Vec3::new((i % 32) as f32, (i / 32) as f32, 0.0);
+///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+/// });
+/// // On the host: the worst case, then the count this scene needs.
+/// let mut big = vec![Node::<Aabb>::ZERO; max_nodes(512)];
+/// let mut idx = [0u32; 512];
+/// let leaves = TopDown::sah().build(&tris, &mut big, &mut idx)?.stats().leaves;
+/// assert_eq!(max_nodes(512), 1023);
+/// assert!(max_nodes_for_leaves(leaves) < 400); // leaves of up to 4
+/// // On the device: exactly that many nodes.
+/// let mut nodes = vec![Node::<Aabb>::ZERO; max_nodes_for_leaves(leaves)];
+/// let tree = TopDown::sah().build(&tris, &mut nodes, &mut idx)?;
+/// assert_eq!(tree.node_count(), nodes.len());
+/// // One node short is an error, not a panic.
+/// assert!(TopDown::sah().build(&tris, &mut nodes[1..], &mut idx).is_err());
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+pub const fn max_nodes_for_leaves(leaves: usize) -> usize {
+    if leaves == 0 {
+        0
+    } else {
+        2 * leaves - 1
     }
 }
 

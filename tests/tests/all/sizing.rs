@@ -8,8 +8,8 @@ use bvhkit::glam::Vec3;
 use bvhkit::layout::{QuantizedWide, Wide};
 use bvhkit::query::{pair_stack_bound, PAIR_STACK, SMALL_PAIR_STACK};
 use bvhkit::{
-    brute_force, max_nodes, Aabb, BoundingVolume, Dop14, Error, Node, Obb, PairTraversal, Pairs,
-    Sphere, SplitPoint, TopDown, Triangle,
+    brute_force, max_nodes, max_nodes_for_leaves, Aabb, BoundingVolume, Dop14, Error, Node, Obb,
+    PairTraversal, Pairs, Sphere, SplitPoint, TopDown, Triangle,
 };
 use bvhkit_tests::*;
 use proptest::prelude::*;
@@ -59,6 +59,8 @@ proptest! {
         let mut idx = vec![0u32; cfg.index_capacity(n)];
         let bvh = cfg.build(&prims, &mut nodes, &mut idx).unwrap();
         prop_assert!(bvh.node_count() <= max_nodes(n));
+        let (leaves, used) = (bvh.stats().leaves, bvh.node_count());
+        let (want_nodes, want_idx) = (bvh.nodes().to_vec(), bvh.indices().to_vec());
         prop_assert_eq!(
             cfg.bytes_needed::<Aabb>(n),
             max_nodes(n) * std::mem::size_of::<Node<Aabb>>() + cfg.index_capacity(n) * 4
@@ -73,6 +75,18 @@ proptest! {
 
         same_tree_from_zero_storage::<Aabb>(&cfg, &prims);
         same_tree_from_zero_storage::<Sphere>(&cfg, &prims);
+
+        // Sized by its leaf count: exactly the nodes the tree uses, the same
+        // tree again; one node fewer is an error, not a panic.
+        prop_assert_eq!(used, max_nodes_for_leaves(leaves));
+        let mut exact = vec![Node::<Aabb>::ZERO; max_nodes_for_leaves(leaves)];
+        let again = cfg.build(&prims, &mut exact, &mut idx).unwrap();
+        prop_assert_eq!(again.nodes(), &want_nodes[..]);
+        prop_assert_eq!(again.indices(), &want_idx[..]);
+        let mut fewer = vec![Node::<Aabb>::ZERO; max_nodes_for_leaves(leaves) - 1];
+        let refused = cfg.build(&prims, &mut fewer, &mut idx);
+        let is_node_error = matches!(refused, Err(Error::NodeCapacity { .. }));
+        prop_assert!(is_node_error, "{:?}", refused.map(|t| t.node_count()));
     }
 
     /// The bottom-up and insertion builders with exactly their `scratch_len`.
