@@ -74,10 +74,10 @@ pub use error::Error;
 pub use narrow::Intersects;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{
-    brute_force, overlapping_pairs, Answer, Bounds, Collector, CostModel, Counts, Decision,
-    DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit, Nearest, Open, Order,
-    PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget, Region, Same,
-    Tally,
+    brute_force, overlapping_pairs, Answer, Bounds, ClosestOnTriangle, Collector, CostModel,
+    Counts, Decision, DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit, Nearest,
+    Open, Order, PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget,
+    Region, Same, Tally, TriangleFeature,
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};

@@ -27,7 +27,7 @@ pub use collect::Collector;
 pub use descent::{Decision, DepthSwitch, Descent, DescentRule, Open};
 pub use distance::{Closest, ClosestPoints, Distance, PairDistance};
 pub use heap::BEST_FIRST_QUEUE;
-pub use nearest::{Nearest, PointDistance};
+pub use nearest::{ClosestOnTriangle, Nearest, PointDistance, TriangleFeature};
 pub use pair::{
     overlapping_pairs, pair_stack_bound, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place,
     Same, PAIR_STACK, SMALL_PAIR_STACK, WIDE_PAIR_STACK,

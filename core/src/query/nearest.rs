@@ -69,41 +69,126 @@ fn box_distance_squared(b: &Aabb, p: DVec3) -> f64 {
     d.length_squared()
 }
 
+/// Which part of a triangle a closest point lies on: the Voronoi region of
+/// the query point. Vertices are numbered as in [`Triangle::v`]; edge `k`
+/// joins vertex `k` and vertex `(k + 1) % 3` (edge 0 is `v[0]v[1]`, edge 1
+/// `v[1]v[2]`, edge 2 `v[2]v[0]`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TriangleFeature {
+    /// A corner: `v[k]` itself.
+    Vertex(u8),
+    /// Inside edge `k` (or at one of its ends, on the boundary of the
+    /// vertex's region).
+    Edge(u8),
+    /// Inside the face.
+    Face,
+}
+
+/// The point of a triangle closest to a query point
+/// ([`Triangle::closest_point`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClosestOnTriangle {
+    /// The closest point, in `f64`.
+    pub point: DVec3,
+    /// Its barycentric coordinates: `point = b.x * v[0] + b.y * v[1] + b.z
+    /// * v[2]`, each in `[0, 1]`, summing to 1 up to rounding; exactly 1 at
+    /// a vertex and exactly 0 away from an edge's two ends.
+    pub barycentric: DVec3,
+    /// The vertex, edge or face the point lies on.
+    pub feature: TriangleFeature,
+    /// Squared distance from the query point, in `f64` (the value
+    /// [`PointDistance::distance_squared`] gives).
+    pub distance_squared: f64,
+}
+
+impl Triangle {
+    /// The point of the triangle closest to `p`, with its barycentric
+    /// coordinates, the feature (vertex, edge or face) it lies on and the
+    /// squared distance. By the Voronoi regions of the vertices, edges and
+    /// face (Ericson, *Real-Time Collision Detection*, section 5.1.5), in
+    /// `f64`; a zero-area triangle (a segment or a point) answers with its
+    /// nearest edge or vertex. The point is the one every distance query of
+    /// the crate uses.
+    ///
+    /// ```
+    /// use bvhkit::{Triangle, TriangleFeature};
+    /// use bvhkit::glam::{DVec3, Vec3};
+    /// let t = Triangle::new(Vec3::ZERO, Vec3::X * 2.0, Vec3::Y * 2.0);
+    /// // Above the face: straight down onto it.
+    /// let c = t.closest_point(Vec3::new(0.5, 0.5, 3.0));
+    /// assert_eq!(c.point, DVec3::new(0.5, 0.5, 0.0));
+    /// assert_eq!((c.feature, c.distance_squared), (TriangleFeature::Face, 9.0));
+    /// assert_eq!(c.barycentric, DVec3::new(0.5, 0.25, 0.25));
+    /// // Beyond the corner v[1]: the corner itself.
+    /// let c = t.closest_point(Vec3::new(5.0, -1.0, 0.0));
+    /// assert_eq!((c.point, c.feature), (DVec3::new(2.0, 0.0, 0.0), TriangleFeature::Vertex(1)));
+    /// // Below the edge v[0]v[1]: a point inside it.
+    /// let c = t.closest_point(Vec3::new(1.5, -4.0, 0.0));
+    /// assert_eq!((c.point, c.feature), (DVec3::new(1.5, 0.0, 0.0), TriangleFeature::Edge(0)));
+    /// ```
+    pub fn closest_point(&self, p: Vec3) -> ClosestOnTriangle {
+        let [a, b, c] = self.v.map(|v| v.as_dvec3());
+        let p = p.as_dvec3();
+        let (point, barycentric, feature) = closest_with_feature(p, a, b, c);
+        ClosestOnTriangle {
+            point,
+            barycentric,
+            feature,
+            distance_squared: (point - p).length_squared(),
+        }
+    }
+}
+
+#[inline]
 pub(super) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    closest_with_feature(p, a, b, c).0
+}
+
+/// The closest point of triangle `abc` to `p`, its barycentric coordinates
+/// and its feature.
+#[inline(always)]
+fn closest_with_feature(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> (DVec3, DVec3, TriangleFeature) {
+    use TriangleFeature::{Edge, Face, Vertex};
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
+        return (a, DVec3::X, Vertex(0));
     }
     let bp = p - b;
     let (d3, d4) = (ab.dot(bp), ac.dot(bp));
     if d3 >= 0.0 && d4 <= d3 {
-        return b;
+        return (b, DVec3::Y, Vertex(1));
     }
     let vc = d1 * d4 - d3 * d2;
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
-        return a + ab * (d1 / (d1 - d3));
+        let t = d1 / (d1 - d3);
+        return (a + ab * t, DVec3::new(1.0 - t, t, 0.0), Edge(0));
     }
     let cp = p - c;
     let (d5, d6) = (ab.dot(cp), ac.dot(cp));
     if d6 >= 0.0 && d5 <= d6 {
-        return c;
+        return (c, DVec3::Z, Vertex(2));
     }
     let vb = d5 * d2 - d1 * d6;
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
-        return a + ac * (d2 / (d2 - d6));
+        let t = d2 / (d2 - d6);
+        return (a + ac * t, DVec3::new(1.0 - t, 0.0, t), Edge(2));
     }
     let va = d3 * d6 - d5 * d4;
     if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+        let t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * t, DVec3::new(0.0, 1.0 - t, t), Edge(1));
     }
     let sum = va + vb + vc;
     if sum > 0.0 {
-        return a + ab * (vb / sum) + ac * (vc / sum);
+        let (v, w) = (vb / sum, vc / sum);
+        return (a + ab * v + ac * w, DVec3::new(1.0 - v - w, v, w), Face);
     }
     // Zero-area triangle whose regions did not settle: the nearest of its
-    // three edges (segments).
-    let seg = |s: DVec3, e: DVec3| {
+    // three edges (segments), edge k from corner k to corner k + 1.
+    let corners = [a, b, c];
+    let seg = |k: usize| {
+        let (s, e) = (corners[k], corners[(k + 1) % 3]);
         let d = e - s;
         let len = d.length_squared();
         let t = if len > 0.0 {
@@ -111,11 +196,21 @@ pub(super) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVe
         } else {
             0.0
         };
-        s + d * t
+        let mut bary = DVec3::ZERO;
+        bary[k] = 1.0 - t;
+        bary[(k + 1) % 3] = t;
+        let feature = if t == 0.0 {
+            Vertex(k as u8)
+        } else if t == 1.0 {
+            Vertex(((k + 1) % 3) as u8)
+        } else {
+            Edge(k as u8)
+        };
+        (s + d * t, bary, feature)
     };
-    let mut best = seg(a, b);
-    for q in [seg(b, c), seg(c, a)] {
-        if (q - p).length_squared() < (best - p).length_squared() {
+    let mut best = seg(0);
+    for q in [seg(1), seg(2)] {
+        if (q.0 - p).length_squared() < (best.0 - p).length_squared() {
             best = q;
         }
     }

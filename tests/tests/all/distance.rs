@@ -330,3 +330,69 @@ proptest! {
         each_volume!(Aabb, Sphere, Obb);
     }
 }
+
+/// A corner on a small integer grid (so that triangles are often flat,
+/// collinear or repeat a corner), scaled.
+fn grid_point(scale: f32) -> impl Strategy<Value = Vec3> {
+    (-3i32..4, -3i32..4, -3i32..4)
+        .prop_map(move |(x, y, z)| Vec3::new(x as f32, y as f32, z as f32) * scale)
+}
+
+proptest! {
+    #![proptest_config(proptest_config(256))]
+
+    /// `Triangle::closest_point` against sampling: its point is on the
+    /// triangle (its barycentric coordinates rebuild it), no sample of the
+    /// triangle is closer, its feature agrees with its coordinates, and it
+    /// is the point and distance the distance queries use.
+    #[test]
+    fn closest_point_on_a_triangle_is_closest_and_names_its_feature(
+        scale in prop_oneof![Just(1.0f32), Just(0.01), Just(250.0)],
+        a in grid_point(1.0), b in grid_point(1.0), c in grid_point(1.0),
+        p in (-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0),
+    ) {
+        use bvhkit::glam::DVec3;
+        use bvhkit::{PointDistance, TriangleFeature};
+        let t = Triangle::new(a * scale, b * scale, c * scale);
+        let p = Vec3::new(p.0, p.1, p.2) * scale;
+        let got = t.closest_point(p);
+        let v = t.v.map(|x| x.as_dvec3());
+        let size = v.iter().fold(1.0f64, |m, x| m.max(x.abs().max_element())) + p.abs().max_element() as f64;
+        let tol = size * 1e-9;
+
+        // The same point and distance as the distance queries.
+        prop_assert_eq!(got.point, p.closest_points(&t).on_b);
+        prop_assert_eq!(got.distance_squared, t.distance_squared(p));
+        prop_assert_eq!(got.distance_squared, (got.point - p.as_dvec3()).length_squared());
+
+        // On the triangle.
+        let w = got.barycentric;
+        prop_assert!(w.min_element() >= -1e-12 && w.max_element() <= 1.0 + 1e-12, "{:?}", w);
+        prop_assert!((w.element_sum() - 1.0).abs() < 1e-9, "{:?}", w);
+        let rebuilt = v[0] * w.x + v[1] * w.y + v[2] * w.z;
+        prop_assert!((rebuilt - got.point).abs().max_element() <= tol, "{:?} {:?}", rebuilt, got.point);
+
+        // The feature agrees with the coordinates.
+        match got.feature {
+            TriangleFeature::Vertex(k) => {
+                prop_assert_eq!(got.point, v[k as usize]);
+                prop_assert_eq!(w[k as usize], 1.0);
+            }
+            TriangleFeature::Edge(k) => prop_assert_eq!(w[(k as usize + 2) % 3], 0.0),
+            TriangleFeature::Face => prop_assert!(w.min_element() >= 0.0, "{:?}", w),
+        }
+
+        // No sample of the triangle is closer (sampling: a 24 x 24
+        // barycentric grid, which includes the corners and the edges).
+        let q = p.as_dvec3();
+        let n = 24;
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let (s, r) = (i as f64 / n as f64, j as f64 / n as f64);
+                let x: DVec3 = v[0] * (1.0 - s - r) + v[1] * s + v[2] * r;
+                let d = (x - q).length_squared();
+                prop_assert!(got.distance_squared <= d + tol * size, "sample {:?} at {} < {}", x, d, got.distance_squared);
+            }
+        }
+    }
+}
