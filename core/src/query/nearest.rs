@@ -90,9 +90,9 @@ pub enum TriangleFeature {
 pub struct ClosestOnTriangle {
     /// The closest point, in `f64`.
     pub point: DVec3,
-    /// Its barycentric coordinates: `point = b.x * v[0] + b.y * v[1] + b.z
-    /// * v[2]`, each in `[0, 1]`, summing to 1 up to rounding; exactly 1 at
-    /// a vertex and exactly 0 away from an edge's two ends.
+    /// Its barycentric coordinates `b`, with `point = b.x v[0] + b.y v[1] +
+    /// b.z v[2]`: each in `[0, 1]`, summing to 1 up to rounding; exactly 1
+    /// at a vertex and exactly 0 away from an edge's two ends.
     pub barycentric: DVec3,
     /// The vertex, edge or face the point lies on.
     pub feature: TriangleFeature,
