@@ -88,7 +88,7 @@ pub const fn max_nodes_for_leaves(leaves: usize) -> usize {
 ///
 /// For an internal node (`count == 0`) the children are `first` and `first + 1`.
 /// For a leaf (`count > 0`) the primitives are `indices[first .. first + count]`.
-/// With an [`Aabb`](crate::Aabb) the node is 32 bytes.
+/// With an [`Aabb`] the node is 32 bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct Node<B> {
