@@ -77,7 +77,7 @@ pub use query::{
     brute_force, overlapping_pairs, Answer, Bounds, ClosestOnTriangle, Collector, CostModel,
     Counts, Decision, DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit, Nearest,
     Open, Order, PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget,
-    Region, Same, Tally, TriangleFeature,
+    Region, Same, Tally, TriangleFeature, TriangleHit,
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};

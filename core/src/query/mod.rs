@@ -32,7 +32,7 @@ pub use pair::{
     overlapping_pairs, pair_stack_bound, Answer, Bounds, Exact, Frame, PairTraversal, Pairs, Place,
     Same, PAIR_STACK, SMALL_PAIR_STACK, WIDE_PAIR_STACK,
 };
-pub use ray::{Hit, Ray, RayOrder, RayTarget};
+pub use ray::{Hit, Ray, RayOrder, RayTarget, TriangleHit};
 pub use self_pairs::{Adjacent, KeepAll, SelfFilter, SelfPairs, SkipAdjacent, SkipIds};
 pub use single::{Order, Query, Region};
 pub use tally::{CostModel, Counts, Tally};

@@ -17,7 +17,7 @@ use crate::tree::{Boxes4, Bvh, Content, Hierarchy, Kids, MAX_CHILDREN};
 use crate::Error;
 #[cfg(feature = "sphere")]
 use crate::Sphere;
-use glam::{Vec3, Vec3A};
+use glam::{DVec3, Vec3, Vec3A};
 
 /// A ray `origin + t * dir` for `t` in `[0, t_max]`.
 ///
@@ -116,41 +116,117 @@ impl RayTarget for Triangle {
     /// Möller–Trumbore in `f64`. A ray in the triangle's plane does not hit it
     /// (it would touch only an edge, a set of zero area).
     fn ray_hit(&self, ray: &Ray) -> Option<f32> {
-        let [a, b, c] = self.v.map(|p| p.as_dvec3());
-        let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
-        let (e1, e2) = (b - a, c - a);
-        let p = d.cross(e2);
-        let det = e1.dot(p);
-        if det == 0.0 || !det.is_finite() {
-            return None;
-        }
-        let inv = 1.0 / det;
-        let s = o - a;
-        let u = s.dot(p) * inv;
-        if !(0.0..=1.0).contains(&u) {
-            return None;
-        }
-        let q = s.cross(e1);
-        let v = d.dot(q) * inv;
-        if v < 0.0 || u + v > 1.0 {
-            return None;
-        }
-        let t = e2.dot(q) * inv;
-        // A ray nearly in the triangle's plane makes `det` tiny and `u`, `v`,
-        // `t` unreliable: the "hit" can lie far outside the triangle (found
-        // by fuzzing: a ray along an edge reported t = 0 at a point 2 mm from
-        // it). Keep only hits inside the triangle's box, padded by half the
-        // pad of the tree's box test (less the rounding of the hit point),
-        // so that the tree never prunes a box whose triangle this test hits.
-        let hit = o + d * t;
-        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-        let rounding = (o.abs() + (d * t).abs()) * (1.0 / (1u64 << 50) as f64);
-        let pad = lo.abs().max(hi.abs()) * (PAD as f64 * 0.5) - rounding;
-        if hit.cmplt(lo - pad).any() || hit.cmpgt(hi + pad).any() {
-            return None;
-        }
-        within(t, ray)
+        moller_trumbore(self, ray).map(|m| m.t)
     }
+}
+
+/// Where a ray meets a triangle ([`Triangle::ray_intersection`]): the
+/// distance of [`RayTarget::ray_hit`], plus the geometry a shader or a
+/// contact needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit {
+    /// Distance along the ray, in units of its direction: the `t` of
+    /// [`RayTarget::ray_hit`] and of a tree's [`Hit`].
+    pub t: f32,
+    /// Barycentric coordinates `b` of the hit point (`b.x v[0] + b.y v[1] +
+    /// b.z v[2]`), in `f64`, each in `[0, 1]`.
+    pub barycentric: DVec3,
+    /// The triangle's unit normal, `(v[1] - v[0]) x (v[2] - v[0])`
+    /// normalised: counter-clockwise corners face it.
+    pub normal: Vec3,
+    /// Whether the ray arrives on the side `normal` points to.
+    pub front: bool,
+}
+
+impl Triangle {
+    /// The ray's hit on this triangle with its geometry: the same `t` as
+    /// [`RayTarget::ray_hit`] (so a tree's [`Hit`] can be expanded after
+    /// the query, for the one triangle it names), the barycentric
+    /// coordinates, the unit normal and the side the ray arrives on.
+    ///
+    /// ```
+    /// use bvhkit::{Query, Ray, RayOrder, RayTarget, TopDown, Triangle};
+    /// use bvhkit::glam::{DVec3, Vec3};
+    /// let floor = Triangle::new(Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
+    /// let down = Ray::new(Vec3::new(1.0, 2.0, 5.0), -Vec3::Z, f32::INFINITY)?;
+    /// let hit = floor.ray_intersection(&down).unwrap();
+    /// assert_eq!(Some(hit.t), floor.ray_hit(&down));
+    /// assert_eq!((hit.t, hit.normal, hit.front), (5.0, Vec3::Z, true));
+    /// assert_eq!(hit.barycentric, DVec3::new(0.25, 0.25, 0.5));
+    /// // From below, the back.
+    /// let up = Ray::new(Vec3::new(1.0, 2.0, -1.0), Vec3::Z, f32::INFINITY)?;
+    /// assert!(!floor.ray_intersection(&up).unwrap().front);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn ray_intersection(&self, ray: &Ray) -> Option<TriangleHit> {
+        let m = moller_trumbore(self, ray)?;
+        let [a, b, c] = self.v.map(|p| p.as_dvec3());
+        let n = (b - a).cross(c - a);
+        Some(TriangleHit {
+            t: m.t,
+            barycentric: DVec3::new(1.0 - m.u - m.v, m.u, m.v),
+            normal: n.normalize_or_zero().as_vec3(),
+            front: m.det > 0.0,
+        })
+    }
+}
+
+/// A Möller–Trumbore hit: `t` (checked against the ray), the barycentric
+/// `u`, `v` of corners 1 and 2, and the determinant (positive when the ray
+/// meets the front).
+struct MollerTrumbore {
+    t: f32,
+    u: f64,
+    v: f64,
+    det: f64,
+}
+
+fn moller_trumbore(tri: &Triangle, ray: &Ray) -> Option<MollerTrumbore> {
+    let [a, b, c] = tri.v.map(|p| p.as_dvec3());
+    let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+    let (e1, e2) = (b - a, c - a);
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = o - a;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = d.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) * inv;
+    // A ray nearly in the triangle's plane makes `det` tiny and `u`, `v`,
+    // `t` unreliable: the "hit" can lie far outside the triangle (found
+    // by fuzzing: a ray along an edge reported t = 0 at a point 2 mm from
+    // it). Keep only hits inside the triangle's box, padded by less than
+    // the tree's box test allows, so that the tree never prunes a box
+    // whose triangle this test hits. The tree pads a box by `PAD` of its
+    // magnitude and widens each entry and exit by `WIDEN` of its `t`: a
+    // point `e` outside a face along axis `k` still passes when `e <=
+    // WIDEN * t * |d_k|`. The check allows half the first and a quarter of
+    // the second, less a bound on the rounding of the hit point (the
+    // product `d * t` and the sum, each within 2^-53 of its size; 2^-51
+    // leaves a factor 4). Without the second term, a triangle in a
+    // coordinate plane through the origin (a floor at z = 0: no magnitude,
+    // so no pad) was missed by a ray straight at it.
+    let hit = o + d * t;
+    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+    let travel = (d * t).abs();
+    let rounding = (travel + hit.abs()) * (1.0 / (1u64 << 51) as f64);
+    let pad =
+        lo.abs().max(hi.abs()) * (PAD as f64 * 0.5) + travel * (WIDEN as f64 * 0.25) - rounding;
+    if hit.cmplt(lo - pad).any() || hit.cmpgt(hi + pad).any() {
+        return None;
+    }
+    let t = within(t, ray)?;
+    Some(MollerTrumbore { t, u, v, det })
 }
 
 #[cfg(feature = "sphere")]

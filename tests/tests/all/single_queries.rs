@@ -313,3 +313,87 @@ fn region_in_boxes(boxes: &[Aabb]) -> f32 {
     let all = boxes.iter().fold(boxes[0], |a, b| a.union(b));
     all.extent().max_element()
 }
+
+/// Found while writing `Triangle::ray_intersection`: a triangle lying in a
+/// coordinate plane through the origin (a floor at z = 0) was missed by a
+/// ray straight at it. Its box has no extent and no magnitude along that
+/// axis, so the hit check's pad (a fraction of the magnitude, less the
+/// rounding of the hit point) was negative, and the exact hit point, on
+/// the plane, counted as outside. Brute force used the same test, so the
+/// trees agreed with it: both said "no hit".
+#[test]
+fn a_ray_hits_a_triangle_in_a_coordinate_plane_through_the_origin() {
+    use bvhkit::{brute_force, Ray, RayOrder, RayTarget, Triangle};
+    let s = 4.0;
+    let floors = [
+        Triangle::new(Vec3::ZERO, Vec3::X * s, Vec3::Y * s), // z = 0
+        Triangle::new(Vec3::ZERO, Vec3::Y * s, Vec3::Z * s), // x = 0
+        Triangle::new(Vec3::ZERO, Vec3::Z * s, Vec3::X * s), // y = 0
+    ];
+    for (k, floor) in floors.iter().enumerate() {
+        let inside = (floor.v[1] + floor.v[2]) * 0.3; // a point of the face
+        let normal = Vec3::AXES[(k + 2) % 3];
+        for (from, dir, want) in [
+            (inside + normal * 5.0, -normal, 5.0), // straight down
+            (inside - normal * 2.5, normal, 2.5),  // straight up, from below
+            (
+                inside + normal * 3.0 + floor.v[1] * 0.01,
+                -normal * 2.0,
+                1.5,
+            ), // any scale
+            (inside, -normal, 0.0),                // starting on the face
+        ] {
+            let ray = Ray::new(from, dir, f32::INFINITY).unwrap();
+            assert_eq!(floor.ray_hit(&ray), Some(want), "plane {k}, from {from}");
+            let tris = [*floor, floor.translated(Vec3::splat(10.0))];
+            let (nodes, idx, _) =
+                build::<Aabb, _>(&TopDown::default().with_max_leaf_size(1), &tris).unwrap();
+            let tree = open(&nodes, &idx, &tris);
+            let hit = tree
+                .cast_ray(&tris, &ray, RayOrder::DepthFirst, ())
+                .unwrap();
+            assert_eq!(hit, brute_force::ray_closest(&tris, &ray));
+            assert_eq!(hit.map(|h| h.prim), Some(0));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(proptest_config(256))]
+
+    /// `Triangle::ray_intersection` is `ray_hit` with geometry: the same
+    /// `t` (and the same misses), barycentric coordinates that rebuild the
+    /// hit point, a unit normal across both edges, and `front` on the side
+    /// the normal points to.
+    #[test]
+    fn ray_intersection_is_ray_hit_with_its_geometry(
+        a in (-3i32..4, -3i32..4, -3i32..4), b in (-3i32..4, -3i32..4, -3i32..4),
+        c in (-3i32..4, -3i32..4, -3i32..4), o in (-6.0f32..6.0, -6.0f32..6.0, -6.0f32..6.0),
+        aim in (0.0f32..1.0, 0.0f32..1.0), dir in direction(),
+    ) {
+        use bvhkit::RayTarget;
+        let p = |(x, y, z): (i32, i32, i32)| Vec3::new(x as f32, y as f32, z as f32);
+        let t = Triangle::new(p(a), p(b), p(c));
+        let o = Vec3::new(o.0, o.1, o.2);
+        // Half the rays aim at a point of the triangle, half go anywhere.
+        let target = t.v[0] + (t.v[1] - t.v[0]) * aim.0 + (t.v[2] - t.v[0]) * (aim.1 * (1.0 - aim.0));
+        let d = if aim.0 < 0.5 { target - o } else { dir };
+        let Ok(ray) = Ray::new(o, d, f32::INFINITY) else { return Ok(()) };
+        let got = t.ray_intersection(&ray);
+        prop_assert_eq!(got.map(|h| h.t), t.ray_hit(&ray));
+        if let Some(h) = got {
+            let w = h.barycentric;
+            prop_assert!(w.min_element() >= -1e-12 && (w.element_sum() - 1.0).abs() < 1e-9, "{:?}", w);
+            let on = t.v[0].as_dvec3() * w.x + t.v[1].as_dvec3() * w.y + t.v[2].as_dvec3() * w.z;
+            let along = o.as_dvec3() + d.as_dvec3() * h.t as f64;
+            let size = 10.0 + (d.length() * h.t) as f64;
+            prop_assert!((on - along).length() <= size * 1e-6, "{:?} {:?}", on, along);
+            let n = h.normal;
+            prop_assert!((n.length() - 1.0).abs() < 1e-6);
+            let (e1, e2) = (t.v[1] - t.v[0], t.v[2] - t.v[0]);
+            prop_assert!(n.dot(e1).abs() <= 1e-5 * e1.length() && n.dot(e2).abs() <= 1e-5 * e2.length());
+            prop_assert!(n.dot(e1.cross(e2)) > 0.0);
+            prop_assert_eq!(h.front, d.dot(n) < 0.0);
+        }
+    }
+}
