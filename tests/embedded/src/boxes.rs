@@ -51,6 +51,8 @@ pub fn run(clock: &Clock) -> Result<(), bvhkit::Error> {
                 tree.depth()
             );
         }
+        let digest = scene::tree_digest(tree.nodes(), tree.indices());
+        hprintln!("boxtree f{} {} {:08x}", f, tree.node_count(), digest);
         let mut digest = 0u32;
         let count = step(clock, timed, "boxes-pairs", || {
             SelfPairs::new(&tree, boxes)

@@ -113,3 +113,26 @@ pub fn box_ray(r: usize, f: usize) -> (Vec3, Vec3) {
         _ => (Vec3::new(y, 30.0, 0.5), Vec3::new(0.25, -1.0, 0.0)),
     }
 }
+
+/// Digest of a tree, bit for bit: every node's bounds, first and count,
+/// then the index array, in order. The host builds the same scene with the
+/// same builder and compares: a microcontroller bins one axis at a time
+/// where the host bins all three at once, and both must give the same tree.
+#[allow(dead_code)]
+pub fn tree_digest(nodes: &[bvhkit::Node<bvhkit::Aabb>], indices: &[u32]) -> u32 {
+    let mut h = 0x811C_9DC5u32;
+    let mut eat = |w: u32| h = (h ^ w).wrapping_mul(0x0100_0193);
+    for n in nodes {
+        for v in [n.bv.min, n.bv.max] {
+            for c in v.to_array() {
+                eat(c.to_bits());
+            }
+        }
+        eat(n.first);
+        eat(n.count);
+    }
+    for &i in indices {
+        eat(i);
+    }
+    h
+}
