@@ -3,7 +3,7 @@
 
 use super::criteria::Norm;
 use super::source::Source;
-use super::split_points::{even_bin, Plan};
+use super::split_points::Plan;
 use super::Task;
 use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
@@ -33,13 +33,6 @@ impl LaneBin {
     #[inline(always)]
     pub(super) fn aabb(&self) -> Aabb {
         Aabb::new(self.min.into(), self.max.into())
-    }
-    #[inline(always)]
-    pub(super) fn of(b: &Aabb) -> LaneBin {
-        LaneBin {
-            min: b.min.into(),
-            max: b.max.into(),
-        }
     }
 }
 
@@ -92,7 +85,7 @@ fn bin_scales(c: &Aabb, k: usize, axes: [bool; 3]) -> [f32; 3] {
 
 /// One axis only ([`AxisChoice::Longest`](crate::AxisChoice::Longest)):
 /// bins along it; the partition then measures both halves. Generic over
-/// the source only; the row of bins comes from [`one_axis_sized`].
+/// the source only; the row of bins comes from [`score_axis`].
 #[inline(never)]
 fn plan_one_axis<S: Source>(
     src: &S,
@@ -114,11 +107,13 @@ fn plan_one_axis<S: Source>(
         lo: c.min[a],
         scale: scale[a],
     };
-    let boundary = match k {
-        0..=4 => one_axis_sized::<S, 4>(src, range, axis, k, norm),
-        5..=8 => one_axis_sized::<S, 8>(src, range, axis, k, norm),
-        9..=16 => one_axis_sized::<S, 16>(src, range, axis, k, norm),
-        _ => one_axis_sized::<S, MAX_BINS>(src, range, axis, k, norm),
+    // The one-axis-at-a-time scorer; its halves and count are not used:
+    // the partition measures both halves itself on this path.
+    let (_, boundary, _, _) = match k {
+        0..=4 => score_axis::<S, 4>(src, range, axis, k, norm),
+        5..=8 => score_axis::<S, 8>(src, range, axis, k, norm),
+        9..=16 => score_axis::<S, 16>(src, range, axis, k, norm),
+        _ => score_axis::<S, MAX_BINS>(src, range, axis, k, norm),
     }?;
     Some(Plan::Axis {
         axis: a,
@@ -128,56 +123,6 @@ fn plan_one_axis<S: Source>(
         boundary,
         known: None,
     })
-}
-
-/// A row of `N` bins on the stack for [`one_axis_row`]: out of line, one
-/// small copy per size.
-#[inline(never)]
-fn one_axis_sized<S: Source, const N: usize>(
-    src: &S,
-    range: &[S::Item],
-    axis: Axis,
-    k: usize,
-    norm: &Norm,
-) -> Option<usize> {
-    let mut row = [LaneBin::EMPTY; N];
-    let mut count = [0u32; N];
-    let k = k.min(N);
-    one_axis_row(src, range, axis, &mut row[..k], &mut count[..k], norm)
-}
-
-/// Bins `range` along one axis by each box's centre (`even_bin`), and
-/// returns the SAH-best boundary.
-#[inline(never)]
-fn one_axis_row<S: Source>(
-    src: &S,
-    range: &[S::Item],
-    axis: Axis,
-    row: &mut [LaneBin],
-    count: &mut [u32],
-    norm: &Norm,
-) -> Option<usize> {
-    let k = row.len().min(count.len());
-    if k == 0 {
-        return None;
-    }
-    for &i in range {
-        let b = src.bounds(i);
-        let j = even_bin(b.center()[axis.a], axis.lo, axis.scale, k);
-        if let (Some(bin), Some(n)) = (row.get_mut(j), count.get_mut(j)) {
-            *bin = bin.union(&LaneBin::of(&b));
-            *n += 1;
-        }
-    }
-    let (row, count) = (&row[..k], &count[..k]);
-    let best = best_of_rows(
-        [row; 3],
-        [count; 3],
-        range.len(),
-        [true, false, false],
-        norm,
-    );
-    best.map(|(_, _, boundary)| boundary)
 }
 
 /// One pass bins every primitive along x, y and z at once.
