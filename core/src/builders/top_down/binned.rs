@@ -109,12 +109,7 @@ fn plan_one_axis<S: Source>(
     };
     // The one-axis-at-a-time scorer; its halves and count are not used:
     // the partition measures both halves itself on this path.
-    let (_, boundary, _, _) = match k {
-        0..=4 => score_axis::<S, 4>(src, range, axis, k, norm),
-        5..=8 => score_axis::<S, 8>(src, range, axis, k, norm),
-        9..=16 => score_axis::<S, 16>(src, range, axis, k, norm),
-        _ => score_axis::<S, MAX_BINS>(src, range, axis, k, norm),
-    }?;
+    let (_, boundary, _, _) = score_sized(src, range, axis, k, norm)?;
     Some(Plan::Axis {
         axis: a,
         lo: axis.lo,
@@ -231,13 +226,7 @@ fn plan_axis_by_axis<S: Source>(
             lo: c.min[a],
             scale: sc,
         };
-        let scored = match k {
-            0..=4 => score_axis::<S, 4>(src, range, axis, k, norm),
-            5..=8 => score_axis::<S, 8>(src, range, axis, k, norm),
-            9..=16 => score_axis::<S, 16>(src, range, axis, k, norm),
-            _ => score_axis::<S, MAX_BINS>(src, range, axis, k, norm),
-        };
-        let Some((cost, boundary, mid, halves)) = scored else {
+        let Some((cost, boundary, mid, halves)) = score_sized(src, range, axis, k, norm) else {
             continue;
         };
         if pick.is_none_or(|(b, ..)| cost < b) {
@@ -261,6 +250,23 @@ struct Axis {
     a: usize,
     lo: f32,
     scale: f32,
+}
+
+/// [`score_axis`] with the smallest row that holds `k` bins.
+#[inline(always)]
+fn score_sized<S: Source>(
+    src: &S,
+    range: &[S::Item],
+    axis: Axis,
+    k: usize,
+    norm: &Norm,
+) -> Option<(f32, usize, u32, [LaneBin; 2])> {
+    match k {
+        0..=4 => score_axis::<S, 4>(src, range, axis, k, norm),
+        5..=8 => score_axis::<S, 8>(src, range, axis, k, norm),
+        9..=16 => score_axis::<S, 16>(src, range, axis, k, norm),
+        _ => score_axis::<S, MAX_BINS>(src, range, axis, k, norm),
+    }
 }
 
 /// A row of `N` bins on the stack for [`score_row`]: out of line, one small
