@@ -126,6 +126,15 @@ pub enum Error {
         /// Entries the caller provided.
         available: usize,
     },
+    /// A [`LeafHandle`](crate::builders::LeafHandle) that names no live leaf
+    /// of the tree: its object was removed (the node may hold another object
+    /// now, in a later generation), or it came from another tree.
+    StaleHandle {
+        /// The node the handle names.
+        index: u32,
+        /// The generation it was made in.
+        generation: u32,
+    },
     /// A builder option is out of its documented range.
     InvalidConfig(&'static str),
     /// A query's own input is unusable: a region, ray or point with a NaN or
@@ -158,6 +167,7 @@ impl Error {
             Error::SparseTree { .. } => "tree too unbalanced for the implicit array",
             Error::VertexIndexOutOfRange { .. } => "a triangle names a vertex that does not exist",
             Error::ScratchCapacity { .. } => "scratch buffer too small",
+            Error::StaleHandle { .. } => "the handle names no live leaf of this tree",
             Error::InvalidConfig(what) | Error::InvalidQuery(what) | Error::InvalidTree(what) => {
                 what
             }
@@ -222,6 +232,10 @@ impl fmt::Display for Error {
             Error::ScratchCapacity { needed, available } => write!(
                 f,
                 "scratch buffer too small: need {needed} entries, have {available}"
+            ),
+            Error::StaleHandle { index, generation } => write!(
+                f,
+                "handle (node {index}, generation {generation}) names no live leaf of this tree"
             ),
             Error::InvalidConfig(what) => write!(f, "invalid configuration: {what}"),
             Error::InvalidQuery(what) => write!(f, "invalid query: {what}"),
@@ -294,6 +308,10 @@ mod tests {
             Error::ScratchCapacity {
                 needed: 0,
                 available: 0,
+            },
+            Error::StaleHandle {
+                index: 0,
+                generation: 0,
             },
             Error::InvalidConfig("bad config"),
             Error::InvalidQuery("bad query"),

@@ -713,6 +713,21 @@ pub trait Exercises {
     /// touch give depth 0, and a radius of 0 is a point. Compared as in 45a
     /// (the largest coordinate or radius, at least 1).
     fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)>;
+
+    /// Exercise 46a: is the handle `(index, generation)` live in a dynamic
+    /// tree's `storage`? Live means node `index` exists, is a leaf of the
+    /// tree (height 0 and no children: `left == NULL`; a free node has
+    /// height `u32::MAX`, an internal node has children) and is in exactly
+    /// that generation. Any other handle, one past the end of the storage
+    /// included, is not live (return `false`, never panic).
+    fn handle_is_live(&self, storage: &[DynNode<Aabb>], index: u32, generation: u32) -> bool;
+    /// Exercise 46b: free node `node` of `storage`, whose free list starts
+    /// at `free` ([`NULL`](bvhkit::builders::NULL) when empty; the list runs
+    /// through `parent`). The node becomes blank ([`DynNode::EMPTY`]) but
+    /// for two fields: `parent`, the old head `free`, and `generation`, its
+    /// own plus one (wrapping past `u32::MAX` to 0). Return the new head of
+    /// the free list.
+    fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

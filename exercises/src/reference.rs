@@ -1069,6 +1069,19 @@ impl Exercises for Reference {
     fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)> {
         a.penetration(b).map(|p| (p.normal, p.depth))
     }
+
+    fn handle_is_live(&self, storage: &[DynNode<Aabb>], index: u32, generation: u32) -> bool {
+        // The test `DynamicTree` applies to every handle it is given.
+        storage
+            .get(index as usize)
+            .is_some_and(|n| n.is_live_leaf(generation))
+    }
+
+    fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32 {
+        // What `DynamicTree::remove` does with the removed leaf's node.
+        storage[node as usize] = storage[node as usize].released(free);
+        node
+    }
 }
 
 /// Exercise 40: `(best cost, primitives, first entry, cheaper as a leaf)`

@@ -617,4 +617,22 @@ impl Exercises for Student {
         let _ = (a, b);
         todo!("exercise 45b")
     }
+
+    fn handle_is_live(&self, storage: &[DynNode<Aabb>], index: u32, generation: u32) -> bool {
+        // Hint: `storage.get(index as usize)` instead of indexing (a handle
+        // may name a node past the end). Three tests on the node, all
+        // needed: a leaf (`left == NULL`), in the tree (`height == 0`: a
+        // free node also has no children), and the same generation.
+        let _ = (storage, index, generation);
+        todo!("exercise 46a")
+    }
+
+    fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32 {
+        // Hint: start from `DynNode::EMPTY` so that nothing of the old leaf
+        // is left (a freed node that still reads height 0 and no children
+        // would look like a live leaf); set `parent` and the next
+        // generation (`wrapping_add`); the node is the new head.
+        let _ = (storage, free, node);
+        todo!("exercise 46b")
+    }
 }

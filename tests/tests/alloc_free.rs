@@ -7,7 +7,7 @@
 
 use bvhkit::builders::{
     refit_all, BottomUp, BottomUpScratch, Cluster, DynNode, DynamicConfig, DynamicTree,
-    InsertOrder, Insertion, MergeMetric, Refit, SiblingSearch,
+    InsertOrder, Insertion, LeafHandle, MergeMetric, Refit, SiblingSearch,
 };
 use bvhkit::collision::{collide, BroadPhase, Object};
 use bvhkit::glam::{Quat, Vec3};
@@ -189,7 +189,7 @@ fn check<B: BoundingVolume + Send + Sync>(failures: &mut Vec<String>) {
                 },
             )
             .unwrap();
-            let handles: [u32; 3] =
+            let handles: [LeafHandle; 3] =
                 core::array::from_fn(|i| tree.insert(i as u32, &a[i].bounds()).unwrap());
             tree.update(handles[1], &a[40].bounds()).unwrap();
             tree.remove(handles[0]).unwrap();

@@ -46,6 +46,10 @@ pub struct DynNode<B> {
     pub item: u32,
     /// Height: 0 for a leaf; `u32::MAX` for a free node.
     pub height: u32,
+    /// How many times this node was freed: a [`LeafHandle`] names the
+    /// generation its leaf was made in, so one kept past a removal no longer
+    /// matches, even once the node holds another object.
+    pub generation: u32,
 }
 
 impl<B: BoundingVolume> DynNode<B> {
@@ -57,10 +61,79 @@ impl<B: BoundingVolume> DynNode<B> {
         right: NULL,
         item: 0,
         height: u32::MAX,
+        generation: 0,
     };
 
     fn is_leaf(&self) -> bool {
         self.left == NULL
+    }
+
+    /// Whether this node is a leaf in the tree (not free, not internal) of
+    /// generation `generation`: what a [`LeafHandle`] must find to be live.
+    pub const fn is_live_leaf(&self, generation: u32) -> bool {
+        self.height == 0 && self.left == NULL && self.generation == generation
+    }
+
+    /// This node freed: blank, linked to `next_free` (the free list runs
+    /// through `parent`), in the next generation (wrapping), so that no
+    /// handle of its old leaf matches it again.
+    pub const fn released(&self, next_free: u32) -> Self {
+        DynNode {
+            parent: next_free,
+            generation: self.generation.wrapping_add(1),
+            ..Self::EMPTY
+        }
+    }
+}
+
+/// A leaf of a [`DynamicTree`], as [`insert`](DynamicTree::insert) returns
+/// it: the leaf's node and that node's generation.
+///
+/// Removing an object frees its node and moves the node to the next
+/// generation, so a handle kept past [`remove`](DynamicTree::remove) is
+/// refused ([`Error::StaleHandle`]) by every operation that takes one, even
+/// after the node was reused for another object: an old handle can never
+/// move or remove the wrong object. (A node's generation is a `u32`; it
+/// would take 2^32 removals from one node for a handle to match again.)
+///
+/// ```
+/// use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree};
+/// use bvhkit::{Aabb, Error};
+/// use glam::Vec3;
+/// let mut storage = [DynNode::<Aabb>::EMPTY; 3];
+/// let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default())?;
+/// let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let old = tree.insert(7, &unit)?;
+/// tree.remove(old)?;
+/// let new = tree.insert(8, &unit)?; // the same node, the next generation
+/// assert_eq!(new.index(), old.index());
+/// assert!(matches!(tree.update(old, &unit), Err(Error::StaleHandle { .. })));
+/// assert_eq!(tree.item(new)?, 8);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct LeafHandle {
+    index: u32,
+    generation: u32,
+}
+
+impl LeafHandle {
+    /// A handle from its two numbers, for keeping handles outside Rust (in a
+    /// file, across an FFI boundary). It cannot forge access: a tree refuses
+    /// it unless node `index` is a live leaf of exactly that generation.
+    pub const fn from_parts(index: u32, generation: u32) -> Self {
+        LeafHandle { index, generation }
+    }
+
+    /// The leaf's node in the tree's storage.
+    pub const fn index(self) -> u32 {
+        self.index
+    }
+
+    /// The generation of that node the leaf belongs to.
+    pub const fn generation(self) -> u32 {
+        self.generation
     }
 }
 
@@ -208,8 +281,13 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         }
         let n = storage.len();
         for (i, node) in storage.iter_mut().enumerate() {
-            *node = DynNode::EMPTY;
-            node.parent = if i + 1 < n { i as u32 + 1 } else { NULL };
+            // A new generation: handles of an earlier tree in this storage
+            // are stale.
+            *node = DynNode {
+                parent: if i + 1 < n { i as u32 + 1 } else { NULL },
+                generation: node.generation.wrapping_add(1),
+                ..DynNode::EMPTY
+            };
         }
         Ok(DynamicTree {
             nodes: storage,
@@ -278,16 +356,15 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         self.free = self.nodes[i as usize].parent;
         self.nodes[i as usize] = DynNode {
             height: 0,
+            generation: self.nodes[i as usize].generation,
             ..DynNode::EMPTY
         };
         Ok(i)
     }
 
+    /// Frees node `i`, in the next generation.
     fn release(&mut self, i: u32) {
-        self.nodes[i as usize] = DynNode {
-            parent: self.free,
-            ..DynNode::EMPTY
-        };
+        self.nodes[i as usize] = self.nodes[i as usize].released(self.free);
         self.free = i;
     }
 
@@ -307,11 +384,13 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         Ok(B::from_aabb(&Aabb::new(bounds.min - m, bounds.max + m)))
     }
 
-    /// Inserts object `item` with bounds `bounds`; returns its leaf handle.
-    /// Errors: non-finite bounds or storage full; the object is not inserted
-    /// then. Depth is not an error: a tree that would get deeper than
-    /// [`MAX_DEPTH`] is rebalanced by rotations whatever [`Rotations`] says.
-    pub fn insert(&mut self, item: u32, bounds: &Aabb) -> Result<u32, Error> {
+    /// Inserts object `item` with bounds `bounds`; returns its leaf's
+    /// handle, which [`update`](Self::update) and [`remove`](Self::remove)
+    /// take. Errors: non-finite bounds or storage full; the object is not
+    /// inserted then. Depth is not an error: a tree that would get deeper
+    /// than [`MAX_DEPTH`] is rebalanced by rotations whatever [`Rotations`]
+    /// says.
+    pub fn insert(&mut self, item: u32, bounds: &Aabb) -> Result<LeafHandle, Error> {
         let bv = self.fat(item, bounds)?;
         if self.free == NULL || (self.root != NULL && self.nodes[self.free as usize].parent == NULL)
         {
@@ -334,12 +413,16 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         } else {
             self.max_item.max(item)
         };
-        Ok(leaf)
+        Ok(LeafHandle {
+            index: leaf,
+            generation: self.nodes[leaf as usize].generation,
+        })
     }
 
-    /// Removes the object of leaf `leaf`.
-    pub fn remove(&mut self, leaf: u32) -> Result<(), Error> {
-        self.check_leaf(leaf)?;
+    /// Removes the object of `handle`. Errors: a handle that is not a live
+    /// leaf of this tree (removed already, or never one); nothing changes.
+    pub fn remove(&mut self, handle: LeafHandle) -> Result<(), Error> {
+        let leaf = self.check_leaf(handle)?;
         let item = self.nodes[leaf as usize].item;
         self.detach(leaf);
         self.release(leaf);
@@ -371,8 +454,8 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// and a tree that would get too deep is rebalanced as in
     /// [`insert`](Self::insert). Should even that fail, the object is
     /// removed and the error says so.)
-    pub fn update(&mut self, leaf: u32, bounds: &Aabb) -> Result<bool, Error> {
-        self.check_leaf(leaf)?;
+    pub fn update(&mut self, handle: LeafHandle, bounds: &Aabb) -> Result<bool, Error> {
+        let leaf = self.check_leaf(handle)?;
         let item = self.nodes[leaf as usize].item;
         let bv = self.fat(item, bounds)?;
         if self.nodes[leaf as usize].bv.contains_aabb(bounds) {
@@ -389,10 +472,30 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         Ok(true)
     }
 
-    fn check_leaf(&self, leaf: u32) -> Result<(), Error> {
-        match self.nodes.get(leaf as usize) {
-            Some(n) if n.height == 0 && n.is_leaf() => Ok(()),
-            _ => Err(Error::InvalidConfig("not a leaf handle of this tree")),
+    /// The object id of `handle`'s leaf. Errors as [`remove`](Self::remove).
+    pub fn item(&self, handle: LeafHandle) -> Result<u32, Error> {
+        let leaf = self.check_leaf(handle)?;
+        Ok(self.nodes[leaf as usize].item)
+    }
+
+    /// The fat volume of `handle`'s leaf: its object's box when it was last
+    /// (re)inserted, enlarged by the margin. Errors as [`remove`](Self::remove).
+    pub fn fat_bounds(&self, handle: LeafHandle) -> Result<B, Error> {
+        let leaf = self.check_leaf(handle)?;
+        Ok(self.nodes[leaf as usize].bv)
+    }
+
+    /// Whether `handle` names a live leaf of this tree.
+    pub fn contains(&self, handle: LeafHandle) -> bool {
+        self.check_leaf(handle).is_ok()
+    }
+
+    /// `handle`'s node, if it is a live leaf of the handle's generation.
+    fn check_leaf(&self, handle: LeafHandle) -> Result<u32, Error> {
+        let LeafHandle { index, generation } = handle;
+        match self.nodes.get(index as usize) {
+            Some(n) if n.is_live_leaf(generation) => Ok(index),
+            _ => Err(Error::StaleHandle { index, generation }),
         }
     }
 
@@ -488,6 +591,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             right: leaf,
             item: 0,
             height: self.nodes[sibling as usize].height + 1,
+            generation: self.nodes[parent as usize].generation,
         };
         self.nodes[sibling as usize].parent = parent;
         self.nodes[leaf as usize].parent = parent;
@@ -1019,5 +1123,42 @@ impl Insertion {
             tree.insert(i, &prims[i as usize].bounds())?;
         }
         tree.to_bvh_with(nodes, indices, self.collapse)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The size the embedded chapter quotes for its storage formula.
+    #[test]
+    fn a_node_of_boxes_is_48_bytes() {
+        assert_eq!(core::mem::size_of::<DynNode<Aabb>>(), 48);
+    }
+
+    /// Freeing blanks the node (it no longer reads as a leaf of any
+    /// generation), links it, and advances its generation, wrapping.
+    #[test]
+    fn a_released_node_is_blank_linked_and_in_the_next_generation() {
+        let leaf = DynNode {
+            bv: Aabb::new(Vec3::ZERO, Vec3::ONE),
+            parent: 3,
+            left: NULL,
+            right: NULL,
+            item: 9,
+            height: 0,
+            generation: u32::MAX,
+        };
+        assert!(leaf.is_live_leaf(u32::MAX) && !leaf.is_live_leaf(0));
+        let freed = leaf.released(5);
+        assert_eq!(
+            freed,
+            DynNode {
+                parent: 5,
+                generation: 0,
+                ..DynNode::EMPTY
+            }
+        );
+        assert!(!freed.is_live_leaf(0) && !freed.is_live_leaf(u32::MAX));
     }
 }

@@ -24,7 +24,8 @@ pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
 pub use collapse::Collapse;
 #[cfg(feature = "insertion")]
 pub use dynamic::{
-    DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch, NULL,
+    DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, LeafHandle, Rotations,
+    SiblingSearch, NULL,
 };
 pub use presets::{Preset, PRESETS};
 pub use refit::{refit_all, Refit};

@@ -18,7 +18,7 @@
 //! [`brute_force::self_pairs`](crate::brute_force::self_pairs) over the
 //! boxes of the objects present.
 
-use crate::builders::{DynNode, DynamicConfig, DynamicTree, NULL};
+use crate::builders::{DynNode, DynamicConfig, DynamicTree, LeafHandle, NULL};
 use crate::bv::Aabb;
 use crate::query::{Query, SelfPairs};
 use crate::Error;
@@ -37,8 +37,8 @@ pub enum PairEvent {
 pub struct Slot {
     /// Its box as last given.
     bounds: Aabb,
-    /// Its leaf in the tree, or [`NULL`] for an empty slot.
-    leaf: u32,
+    /// Its leaf in the tree; `None` for an empty slot.
+    leaf: Option<LeafHandle>,
     /// Whether it moved (or arrived) since the last step.
     moved: bool,
 }
@@ -47,7 +47,7 @@ impl Slot {
     /// An empty slot, for initialising storage.
     pub const EMPTY: Slot = Slot {
         bounds: Aabb::EMPTY,
-        leaf: NULL,
+        leaf: None,
         moved: false,
     };
 }
@@ -218,11 +218,11 @@ impl<'s> PairTracker<'s> {
     /// object is not added then).
     pub fn insert(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
         let i = self.slot(id)?;
-        if self.slots[i].leaf != NULL {
+        if self.slots[i].leaf.is_some() {
             return Err(Error::InvalidConfig("object id already present"));
         }
         let leaf = self.tree.insert(id, bounds)?;
-        self.slots[i].leaf = leaf;
+        self.slots[i].leaf = Some(leaf);
         self.slots[i].bounds = *bounds;
         self.boxes[i] = *bounds;
         self.mark(i);
@@ -234,10 +234,9 @@ impl<'s> PairTracker<'s> {
     /// the next step (only if the box changed).
     pub fn set_bounds(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
         let i = self.slot(id)?;
-        let leaf = self.slots[i].leaf;
-        if leaf == NULL {
+        let Some(leaf) = self.slots[i].leaf else {
             return Err(Error::InvalidConfig("object id not present"));
-        }
+        };
         if self.slots[i].bounds == *bounds {
             return Ok(());
         }
@@ -258,7 +257,7 @@ impl<'s> PairTracker<'s> {
     }
 
     fn drop_object(&mut self, i: usize) {
-        self.slots[i].leaf = NULL;
+        self.slots[i].leaf = None;
         self.slots[i].bounds = Aabb::EMPTY;
         self.boxes[i] = Aabb::EMPTY;
         self.mark(i);
@@ -267,10 +266,9 @@ impl<'s> PairTracker<'s> {
     /// Removes object `id`; its pairs end at the next step.
     pub fn remove(&mut self, id: u32) -> Result<(), Error> {
         let i = self.slot(id)?;
-        let leaf = self.slots[i].leaf;
-        if leaf == NULL {
+        let Some(leaf) = self.slots[i].leaf else {
             return Err(Error::InvalidConfig("object id not present"));
-        }
+        };
         self.tree.remove(leaf)?;
         self.drop_object(i);
         Ok(())
@@ -316,7 +314,7 @@ impl<'s> PairTracker<'s> {
         let mut fresh = 0;
         for &m in &self.moved[..movers] {
             let slot = self.slots[m as usize];
-            if slot.leaf == NULL {
+            if slot.leaf.is_none() {
                 continue; // left: its pairs simply are not found again
             }
             let slots = &*self.slots;

@@ -57,7 +57,7 @@ pub fn checks() -> Vec<Check> {
                     prims
                         .iter()
                         .enumerate()
-                        .filter_map(|(i, p)| tree.insert(i as u32, p).ok())
+                        .filter_map(|(i, p)| tree.insert(i as u32, p).ok().map(|h| h.index()))
                         .collect()
                 };
                 let new = b([3.3, 4.1, 0.2], [4.0, 5.0, 0.9]);

@@ -147,6 +147,7 @@ fn leaf(bv: Aabb, parent: u32) -> DynNode<Aabb> {
         right: NULL,
         item: 0,
         height: 0,
+        generation: 0,
     }
 }
 
@@ -159,6 +160,7 @@ fn inner(bv: Aabb, parent: u32, left: u32, right: u32, height: u32) -> DynNode<A
         right,
         item: 0,
         height,
+        generation: 0,
     }
 }
 
@@ -268,6 +270,7 @@ fn library_sibling(prims: &[Aabb], new: &Aabb) -> u32 {
         return NULL;
     };
     // The tree's borrow of `storage` ends here.
+    let leaf = leaf.index();
     let parent = &storage[storage[leaf as usize].parent as usize];
     if parent.left == leaf {
         parent.right

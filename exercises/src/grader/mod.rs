@@ -51,6 +51,7 @@ mod ex42_self_pairs;
 mod ex43_closest_pair;
 mod ex44_crossing_segment;
 mod ex45_penetration;
+mod ex46_handles;
 #[cfg(test)]
 mod wrong;
 
@@ -79,7 +80,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 45] = [
+pub const EXERCISES: [(u32, &str); 46] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -140,6 +141,7 @@ pub const EXERCISES: [(u32, &str); 45] = [
     (43, "the closest pair of two trees: branch and bound"),
     (44, "where two triangles cross: the shared segment"),
     (45, "how deep two boxes or two spheres overlap"),
+    (46, "handles that cannot lie: generations on a free list"),
 ];
 
 /// A score for one exercise.
@@ -205,6 +207,7 @@ pub fn checks() -> Vec<Check> {
         ex43_closest_pair::checks(),
         ex44_crossing_segment::checks(),
         ex45_penetration::checks(),
+        ex46_handles::checks(),
     ]
     .concat()
 }
@@ -418,7 +421,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 506/506 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 515/515 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

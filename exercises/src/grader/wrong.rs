@@ -49,6 +49,7 @@ use super::ex42_self_pairs;
 use super::ex43_closest_pair;
 use super::ex44_crossing_segment;
 use super::ex45_penetration;
+use super::ex46_handles;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -111,6 +112,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (43, ex43_closest_pair::wrong::COUNT),
         (44, ex44_crossing_segment::wrong::COUNT),
         (45, ex45_penetration::wrong::COUNT),
+        (46, ex46_handles::wrong::COUNT),
     ]
 }
 
@@ -365,5 +367,11 @@ impl Exercises for Wrong {
     }
     fn sphere_penetration(&self, a: &Sphere, b: &Sphere) -> Option<(DVec3, f64)> {
         ex45_penetration::wrong::sphere_penetration(self.k(45), a, b)
+    }
+    fn handle_is_live(&self, storage: &[DynNode<Aabb>], index: u32, generation: u32) -> bool {
+        ex46_handles::wrong::handle_is_live(self.k(46), storage, index, generation)
+    }
+    fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32 {
+        ex46_handles::wrong::release_node(self.k(46), storage, free, node)
     }
 }

@@ -2,7 +2,7 @@
 //! force: every volume type, mixed volume types, a tree against itself,
 //! points against triangles, the dynamic tree, and bad arguments.
 
-use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree};
+use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, LeafHandle};
 use bvhkit::glam::Vec3;
 use bvhkit::query::{Distance, PairDistance};
 use bvhkit::{Aabb, Dop14, Error, Node, Obb, Primitive, Sphere, TopDown, Triangle};
@@ -86,7 +86,7 @@ proptest! {
         let (boxes, bb) = (to_boxes(boxes), to_boxes(others));
         let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * boxes.len().max(1)];
         let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
-        let handles: Vec<u32> = (0..boxes.len() as u32).map(|i| tree.insert(i, &boxes[i as usize]).unwrap()).collect();
+        let handles: Vec<LeafHandle> = (0..boxes.len() as u32).map(|i| tree.insert(i, &boxes[i as usize]).unwrap()).collect();
         // Removed boxes are absent from the tree: brute force sees them far away.
         let mut live = boxes.clone();
         for (i, h) in handles.iter().enumerate() {

@@ -2,7 +2,8 @@
 //! move sequences keep the invariants and the answers, for every volume type.
 
 use bvhkit::builders::{
-    Collapse, DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, Rotations, SiblingSearch,
+    Collapse, DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, LeafHandle, Rotations,
+    SiblingSearch,
 };
 use bvhkit::glam::Vec3;
 use bvhkit::{
@@ -62,7 +63,9 @@ fn run<B: BoundingVolume>(
     let mut storage = vec![DynNode::<B>::EMPTY; 2 * cap - 1];
     let mut tree = DynamicTree::new(&mut storage, cfg).unwrap();
     // Live objects: (item, handle, bounds); items are unique ids.
-    let mut live: Vec<(u32, u32, Aabb)> = Vec::new();
+    let mut live: Vec<(u32, LeafHandle, Aabb)> = Vec::new();
+    // Handles of removed objects: every operation must refuse them.
+    let mut dead: Vec<LeafHandle> = Vec::new();
     let mut next_item = 0u32;
     let (no, io, _) = build::<B, _>(&TopDown::default(), other).unwrap();
     let t_other = open(&no, &io, other);
@@ -80,6 +83,7 @@ fn run<B: BoundingVolume>(
             Op::Remove(i) if !live.is_empty() => {
                 let (_, h, _) = live.swap_remove(i % live.len());
                 tree.remove(h).unwrap();
+                dead.push(h);
             }
             Op::Move(i, d) if !live.is_empty() => {
                 let k = i % live.len();
@@ -92,6 +96,22 @@ fn run<B: BoundingVolume>(
             _ => {}
         }
         prop_assert_eq!(tree.len(), live.len());
+        if let Some(&h) = dead.get(step % dead.len().max(1)) {
+            // A stale handle moves and removes nothing, even where its
+            // node now holds a live object.
+            let far = Aabb::new(Vec3::splat(50.0), Vec3::splat(51.0));
+            let stale = Err(Error::StaleHandle {
+                index: h.index(),
+                generation: h.generation(),
+            });
+            prop_assert!(!tree.contains(h));
+            prop_assert_eq!(tree.update(h, &far), stale.map(|()| false));
+            prop_assert_eq!(tree.remove(h), stale);
+            prop_assert_eq!(tree.len(), live.len());
+        }
+        for &(item, h, _) in &live {
+            prop_assert_eq!(tree.item(h), Ok(item));
+        }
         if let Err(e) = tree.validate() {
             return Err(TestCaseError::fail(format!("after {op:?}: {e}")));
         }
@@ -169,7 +189,7 @@ fn run<B: BoundingVolume>(
 fn direct_queries<B: BoundingVolume>(
     tree: &DynamicTree<'_, B>,
     prims: &[Aabb],
-    live: &[(u32, u32, Aabb)],
+    live: &[(u32, LeafHandle, Aabb)],
     other: &[Triangle],
     t_other: &bvhkit::Bvh<'_, B>,
 ) -> Result<(), TestCaseError> {
@@ -420,7 +440,14 @@ fn bad_handles_and_bounds_are_errors() {
         tree.insert(3, &Aabb::new(Vec3::ONE, Vec3::splat(3.0))),
         Err(Error::NodeCapacity { .. })
     ));
-    assert!(tree.remove(99).is_err());
+    // A handle of another (bigger) tree names a node this one lacks.
+    let mut big = vec![DynNode::<Aabb>::EMPTY; 99];
+    let mut other = DynamicTree::new(&mut big, DynamicConfig::default()).unwrap();
+    let mut far = other.insert(0, &Aabb::new(Vec3::ZERO, Vec3::ONE)).unwrap();
+    while far.index() < 50 {
+        far = other.insert(0, &Aabb::new(Vec3::ZERO, Vec3::ONE)).unwrap();
+    }
+    assert!(matches!(tree.remove(far), Err(Error::StaleHandle { .. })));
     tree.remove(h).unwrap();
     assert!(tree.remove(h).is_err(), "double removal");
     assert!(
@@ -443,6 +470,41 @@ fn bad_handles_and_bounds_are_errors() {
     .is_err());
 }
 
+/// A handle kept past its removal is refused by every operation, even once
+/// its node holds another object: before handles carried a generation, the
+/// next insert returned the same handle and `update` on the old one moved
+/// the new object (`Ok(true)`), and `remove` removed it.
+#[test]
+fn a_stale_handle_is_refused_even_after_its_node_is_reused() {
+    let unit = |x: f32| Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0));
+    let mut storage = vec![DynNode::<Aabb>::EMPTY; 7];
+    let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+    let kept = tree.insert(0, &unit(0.0)).unwrap();
+    let old = tree.insert(1, &unit(5.0)).unwrap();
+    tree.remove(old).unwrap();
+    let new = tree.insert(2, &unit(9.0)).unwrap();
+    assert_eq!(new.index(), old.index(), "the freed node is reused");
+    assert_ne!(new, old);
+    let stale = Error::StaleHandle {
+        index: old.index(),
+        generation: old.generation(),
+    };
+    assert_eq!(tree.update(old, &unit(20.0)), Err(stale));
+    assert_eq!(tree.remove(old), Err(stale));
+    assert_eq!(tree.item(old), Err(stale));
+    assert!(!tree.contains(old) && tree.contains(new) && tree.contains(kept));
+    // The new object is untouched: still there, at its own box.
+    assert_eq!(tree.len(), 2);
+    assert_eq!(tree.item(new), Ok(2));
+    assert_eq!(tree.fat_bounds(new), Ok(unit(9.0)));
+    tree.validate().unwrap();
+    // A new tree over the same storage makes every earlier handle stale.
+    let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+    let again = tree.insert(3, &unit(0.0)).unwrap();
+    assert_eq!(again.index(), kept.index());
+    assert!(tree.update(kept, &unit(1.0)).is_err() && tree.contains(again));
+}
+
 /// After removals the leaves of a dynamic tree carry ids that are not
 /// `0..len`: the tree it writes must answer every query over the caller's
 /// whole slice (indexed by id), refuse a slice too short for its largest id
@@ -460,7 +522,7 @@ fn a_dynamic_tree_with_removed_ids_answers_by_id_and_never_panics() {
         .collect();
     let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * tris.len()];
     let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
-    let handles: Vec<u32> = tris
+    let handles: Vec<LeafHandle> = tris
         .iter()
         .enumerate()
         .map(|(i, t)| {
@@ -545,7 +607,7 @@ fn a_dynamic_tree_is_queried_in_place_by_id() {
     assert_eq!(tree.overlapping(&tris, &everything, |_| {}), Ok(0));
     assert_eq!(Pairs::new(&tree, &tris, &tree, &tris).count(), Ok(0));
     assert_eq!(tree.nearest(&tris, Vec3::ZERO, ()), Ok(None));
-    let handles: Vec<u32> = tris
+    let handles: Vec<LeafHandle> = tris
         .iter()
         .enumerate()
         .map(|(i, t)| {
