@@ -919,7 +919,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
 /// let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 10 - 1];
 /// let config = DynamicConfig { margin: 0.2, ..Default::default() };
 /// let mut tree = DynamicTree::new(&mut storage, config)?;
-/// let handles: Vec<u32> = (0..10).map(|i| tree.insert(i, &boxes[i as usize])).collect::<Result<_, _>>()?;
+/// let handles: Vec<_> = (0..10).map(|i| tree.insert(i, &boxes[i as usize])).collect::<Result<_, _>>()?;
 /// // Box 3 moves onto box 4.
 /// boxes[3] = Aabb::new(Vec3::new(3.8, 0.0, 0.0), Vec3::new(4.3, 0.5, 0.5));
 /// tree.update(handles[3], &boxes[3])?;
