@@ -14,7 +14,9 @@
 //! `bottom-up`, `insertion` (builders beyond top-down) and `layouts` (the
 //! compact tree representations). With `default-features = false` the crate
 //! keeps AABB trees, the binned-SAH top-down builder, every query and the
-//! collision system.
+//! collision system. One feature is off by default: `alloc`, for programs
+//! with a heap, adds [`OwnedBvh`] (a tree that sizes and owns its storage)
+//! and [`Mesh`] (a triangle mesh with its tree, queried in one call each).
 //!
 //! Data flows one way: primitives -> [`TopDown`] builder -> [`Bvh`] ->
 //! queries ([`Bvh::overlapping`], [`overlapping_pairs`]) -> your callback.
@@ -48,13 +50,20 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 pub mod builders;
 pub mod bv;
 pub mod collision;
 mod error;
 #[cfg(feature = "layouts")]
 pub mod layout;
+#[cfg(feature = "alloc")]
+mod mesh;
 pub mod narrow;
+#[cfg(feature = "alloc")]
+mod owned;
 mod primitive;
 pub mod query;
 pub mod round;
@@ -71,7 +80,11 @@ pub use bv::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
 #[cfg(feature = "obb")]
 pub use bv::{Obb, ObbDito};
 pub use error::Error;
+#[cfg(feature = "alloc")]
+pub use mesh::{Mesh, PointHit, RayHit};
 pub use narrow::Intersects;
+#[cfg(feature = "alloc")]
+pub use owned::OwnedBvh;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{
     brute_force, overlapping_pairs, Answer, Bounds, ClosestOnTriangle, Collector, CostModel,

@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release -p bvhkit-std --example parallel_build -- [--subdivisions S] [--runs R] [--threads 1,2,4]`
 use bvhkit::{Aabb, TopDown};
-use bvhkit_std::OwnedBvh;
+use bvhkit_std::{OwnedBvh, ParallelBuild};
 use std::time::Instant;
 
 fn arg<T: std::str::FromStr>(name: &str, default: T) -> T {

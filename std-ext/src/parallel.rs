@@ -4,14 +4,14 @@
 //! hands both halves of every large node to a [`Fork`]; [`Threads`] runs them
 //! on [rayon]'s work-stealing pool, so a half waits only when every core is
 //! busy. The tree is the sequential build's, bit for bit, on any number of
-//! threads. [`OwnedBvh::build_parallel`](crate::OwnedBvh::build_parallel)
+//! threads. [`OwnedBvh::build_parallel`](crate::ParallelBuild::build_parallel)
 //! is the one-call form.
 //!
 //! To choose the number of threads, run the build inside a pool of that size:
 //!
 //! ```
 //! use bvhkit::{Aabb, TopDown};
-//! use bvhkit_std::OwnedBvh;
+//! use bvhkit_std::{OwnedBvh, ParallelBuild};
 //! let tris = bvhkit_std::scene::rock(4, 1); // 5,120 triangles
 //! let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
 //! let tree = pool.install(|| OwnedBvh::<Aabb>::build_parallel(&TopDown::default(), &tris))?;
@@ -32,7 +32,7 @@ pub struct Threads {
 }
 
 impl Threads {
-    /// The grain [`OwnedBvh::build_parallel`](crate::OwnedBvh::build_parallel)
+    /// The grain [`OwnedBvh::build_parallel`](crate::ParallelBuild::build_parallel)
     /// uses: pieces of 4,096 primitives or more. Forking costs a few
     /// microseconds, a piece this large takes about a millisecond.
     pub const GRAIN: usize = 4096;

@@ -155,6 +155,25 @@ impl<'a> Wide<'a> {
     pub fn records(&self) -> &'a [WideNode] {
         self.records
     }
+
+    /// The view of `records`, which [`from_bvh`](Self::from_bvh) wrote
+    /// from `bvh` earlier and measured as `depth` levels and `nodes` nodes
+    /// (an owner keeps the records and rebuilds the view per query, without
+    /// walking it again). The caller guarantees all three.
+    #[cfg(feature = "alloc")]
+    pub(crate) fn from_kept<B: BoundingVolume>(
+        records: &'a [WideNode],
+        bvh: &Bvh<'a, B>,
+        depth: usize,
+        nodes: usize,
+    ) -> Self {
+        Wide {
+            records,
+            leaves: Leaves::of(bvh),
+            depth: depth as u32,
+            nodes: nodes as u32,
+        }
+    }
 }
 
 /// Depth of a wide layout, by walking it (the collapse shortens paths

@@ -296,6 +296,30 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
         })
     }
 
+    /// The view of parts an owner keeps from a build: no pass over the
+    /// indices for their bound (`bound` is the one the build's view had),
+    /// so that a view costs nothing per query. The caller guarantees
+    /// everything [`from_raw_parts_with_bounds`](Self::from_raw_parts_with_bounds)
+    /// trusts, and `leaf_bounds` empty or one per index.
+    #[cfg(feature = "alloc")]
+    pub(crate) fn from_kept(
+        nodes: &'a [Node<B>],
+        indices: &'a [u32],
+        leaf_bounds: &'a [Aabb],
+        depth: usize,
+        bound: usize,
+        report: BuildReport,
+    ) -> Self {
+        Bvh {
+            nodes,
+            indices,
+            leaf_bounds,
+            depth: depth.min(u32::MAX as usize) as u32,
+            bound: bound.min(u32::MAX as usize) as u32,
+            report,
+        }
+    }
+
     /// Re-opens a tree from storage kept elsewhere (a file, a previous build),
     /// checking every invariant against `prims` first. `seen` is scratch of at
     /// least [`Bvh::seen_words`] entries.

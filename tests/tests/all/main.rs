@@ -19,6 +19,7 @@ mod insertion;
 mod kdop_measures;
 mod layouts;
 mod measures;
+mod mesh;
 mod narrow;
 mod pitfalls;
 mod quality;

@@ -1,0 +1,339 @@
+//! Owned trees, for programs with a heap (the `alloc` feature).
+//!
+//! The builders write into storage the caller sizes; [`OwnedBvh`] does that
+//! sizing, allocates, builds, and trims the storage to what the tree used,
+//! in one call. The allocation-free API underneath is unchanged: a view of
+//! an owned tree is the same [`Bvh`] every query takes.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::builders::{Fork, PrimitiveRef};
+use crate::bv::{Aabb, BoundingVolume};
+use crate::{BuildReport, Bvh, Error, Node, Primitive, TopDown};
+
+/// A tree with its storage in `Vec`s, sized exactly for the input, and the
+/// primitives' bounds in leaf order ([`Bvh::with_leaf_bounds`]): pair
+/// queries on it read no primitive to test a pair's bounds.
+///
+/// ```
+/// use bvhkit::{Aabb, OwnedBvh, TopDown, Triangle};
+/// use bvhkit::glam::Vec3;
+/// let tris: Vec<Triangle> = (0..100)
+///     .map(|i| {
+///         let o = Vec3::new(i as f32, 0.0, 0.0);
+///         Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+///     })
+///     .collect();
+/// let tree = OwnedBvh::<Aabb>::build(&TopDown::default(), &tris)?;
+/// assert_eq!(tree.view().primitive_count(), 100);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct OwnedBvh<B> {
+    nodes: Vec<Node<B>>,
+    indices: Vec<u32>,
+    /// `leaf_bounds[k]` bounds primitive `indices[k]`.
+    leaf_bounds: Vec<Aabb>,
+    depth: usize,
+    /// The largest index plus one ([`Bvh::index_bound`]), kept so that a
+    /// view costs no pass over the indices.
+    bound: usize,
+    /// What the builder did besides following its configuration.
+    report: BuildReport,
+}
+
+/// The storage of a cached top-down build ([`TopDown::build_cached`]),
+/// freshly allocated, and how it becomes an [`OwnedBvh`].
+struct CachedStorage<B> {
+    nodes: Vec<Node<B>>,
+    indices: Vec<u32>,
+    cache: Vec<PrimitiveRef>,
+    scratch: Vec<Node<B>>,
+    n: usize,
+}
+
+impl<B: BoundingVolume> CachedStorage<B> {
+    /// Every buffer is of zero bits: the allocator hands out zeroed pages
+    /// that cost nothing until written, where a non-zero fill would write
+    /// all of them first (over 2n nodes, of which a tree of 4-primitive
+    /// leaves uses about a third).
+    fn new(builder: &TopDown, n: usize, scratch: usize) -> Self {
+        CachedStorage {
+            nodes: vec![Node::<B>::ZERO; crate::max_nodes(n)],
+            indices: vec![0u32; builder.index_capacity(n)],
+            cache: vec![PrimitiveRef::ZERO; n],
+            scratch: vec![Node::<B>::ZERO; scratch],
+            n,
+        }
+    }
+
+    /// Trims the storage to the `used` nodes of the built tree. After a
+    /// cached build the records are in leaf order: their boxes are the leaf
+    /// bounds, read in one pass (its halves handed to `fork` when large).
+    fn finish<F: Fork>(
+        self,
+        used: usize,
+        depth: usize,
+        report: BuildReport,
+        fork: &F,
+    ) -> OwnedBvh<B> {
+        let CachedStorage {
+            mut nodes,
+            mut indices,
+            cache,
+            scratch,
+            n,
+        } = self;
+        drop(scratch);
+        nodes.truncate(used);
+        nodes.shrink_to_fit();
+        indices.truncate(n);
+        indices.shrink_to_fit();
+        // Zero bits again: the first write is the only pass over the pages.
+        let mut leaf_bounds = vec![Aabb::ZERO; n];
+        copy_bounds(&cache, &mut leaf_bounds, fork);
+        OwnedBvh {
+            bound: crate::tree::index_bound_of(&indices) as usize,
+            nodes,
+            indices,
+            leaf_bounds,
+            depth,
+            report,
+        }
+    }
+}
+
+/// `out[k] = cache[k].bounds()`, in halves through `fork` down to its grain.
+fn copy_bounds<F: Fork>(cache: &[PrimitiveRef], out: &mut [Aabb], fork: &F) {
+    if cache.len() < fork.grain().max(2) {
+        for (o, r) in out.iter_mut().zip(cache) {
+            *o = r.bounds();
+        }
+        return;
+    }
+    let half = cache.len() / 2;
+    let (ca, cb) = cache.split_at(half);
+    let (oa, ob) = out.split_at_mut(half);
+    fork.join(|| copy_bounds(ca, oa, fork), || copy_bounds(cb, ob, fork));
+}
+
+impl<B: BoundingVolume> OwnedBvh<B> {
+    /// Builds into freshly allocated storage (with the bounds cache of
+    /// [`TopDown::build_cached`]), then trims it to what was used.
+    pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
+        let mut storage = CachedStorage::new(builder, prims.len(), 0);
+        let t = builder.build_cached(
+            prims,
+            &mut storage.nodes,
+            &mut storage.indices,
+            &mut storage.cache,
+        )?;
+        let (used, depth, report) = (t.node_count(), t.depth(), t.build_report());
+        let in_one_pass = crate::builders::InOrder { grain: usize::MAX };
+        Ok(storage.finish(used, depth, report, &in_one_pass))
+    }
+
+    /// [`build`](Self::build) with the halves of every large node handed to
+    /// `fork` ([`TopDown::build_cached_forked`]): the same tree, bit for bit.
+    /// `bvhkit-std`'s `build_parallel` passes a thread pool. The forked build
+    /// needs a second node array as scratch (allocated here and dropped).
+    ///
+    /// ```
+    /// use bvhkit::builders::InOrder;
+    /// use bvhkit::{Aabb, OwnedBvh, TopDown, Triangle};
+    /// use bvhkit::glam::Vec3;
+    /// let tris: Vec<Triangle> = (0..3000)
+    ///     .map(|i| {
+    ///         let o = Vec3::new((i % 50) as f32, (i / 50) as f32, (i % 7) as f32);
+    ///         Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+    ///     })
+    ///     .collect();
+    /// let fork = InOrder { grain: 500 }; // pieces of at least 500 triangles
+    /// let forked = OwnedBvh::<Aabb>::build_forked(&TopDown::default(), &tris, &fork)?;
+    /// let plain = OwnedBvh::<Aabb>::build(&TopDown::default(), &tris)?;
+    /// assert_eq!(forked.view().nodes(), plain.view().nodes());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn build_forked<P, F>(builder: &TopDown, prims: &[P], fork: &F) -> Result<Self, Error>
+    where
+        P: Primitive + Sync,
+        B: Send + Sync,
+        F: Fork,
+    {
+        let n = prims.len();
+        let scratch = if n >= fork.grain() {
+            crate::max_nodes(n)
+        } else {
+            0
+        };
+        let mut storage = CachedStorage::new(builder, n, scratch);
+        let t = builder.build_cached_forked(
+            prims,
+            &mut storage.nodes,
+            &mut storage.indices,
+            &mut storage.cache,
+            &mut storage.scratch,
+            fork,
+        )?;
+        let (used, depth, report) = (t.node_count(), t.depth(), t.build_report());
+        Ok(storage.finish(used, depth, report, fork))
+    }
+
+    /// Builds bottom-up (scratch allocated here and dropped after the build).
+    #[cfg(feature = "bottom-up")]
+    pub fn build_bottom_up<P: Primitive>(
+        builder: &crate::builders::BottomUp,
+        prims: &[P],
+    ) -> Result<Self, Error> {
+        use crate::builders::{BottomUp, BottomUpScratch, Cluster};
+        let (nc, nw, nk) = BottomUp::scratch_len(prims.len());
+        let (mut work, mut keys) = (vec![0u32; nw], vec![0u64; nk]);
+        let mut nodes = vec![Node::<B>::ZERO; crate::max_nodes(prims.len())];
+        let mut indices = vec![0u32; prims.len()];
+        // PLOC without a collapse builds in `nodes`: the clusters (as many
+        // bytes again) are allocated only if the tree comes out too deep
+        // and must be rebuilt there.
+        let mut attempt = |clusters: &mut [Cluster<B>]| {
+            let mut scratch = BottomUpScratch {
+                clusters,
+                work: &mut work,
+                keys: &mut keys,
+            };
+            builder
+                .build(prims, &mut nodes, &mut indices, &mut scratch)
+                .map(|t| (t.node_count(), t.depth(), t.build_report()))
+        };
+        let (used, depth, report) = if builder.needs_clusters() {
+            attempt(&mut vec![Cluster::ZERO; nc])
+        } else {
+            match attempt(&mut []) {
+                Err(Error::StackOverflow { .. }) => attempt(&mut vec![Cluster::ZERO; nc]),
+                other => other,
+            }
+        }?;
+        nodes.truncate(used);
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth, report)
+    }
+
+    /// Builds by insertion (dynamic-tree storage allocated here and dropped).
+    #[cfg(feature = "insertion")]
+    pub fn build_by_insertion<P: Primitive>(
+        builder: &crate::builders::Insertion,
+        prims: &[P],
+    ) -> Result<Self, Error> {
+        use crate::builders::DynNode;
+        let n = prims.len();
+        let mut storage = vec![DynNode::<B>::EMPTY; crate::max_nodes(n)];
+        let mut order = vec![0u32; n];
+        let mut nodes = vec![Node::<B>::ZERO; crate::max_nodes(n)];
+        let mut indices = vec![0u32; n];
+        let (used, depth, report) = {
+            let t = builder.build(prims, &mut storage, &mut order, &mut nodes, &mut indices)?;
+            (t.node_count(), t.depth(), t.build_report())
+        };
+        nodes.truncate(used);
+        OwnedBvh::with_leaf_bounds(nodes, indices, prims, depth, report)
+    }
+
+    /// Keeps a built tree with its primitives' bounds in leaf order, as
+    /// the core writes them ([`Bvh::with_leaf_bounds`]).
+    #[cfg(any(feature = "bottom-up", feature = "insertion"))]
+    fn with_leaf_bounds<P: Primitive>(
+        nodes: Vec<Node<B>>,
+        indices: Vec<u32>,
+        prims: &[P],
+        depth: usize,
+        report: BuildReport,
+    ) -> Result<Self, Error> {
+        // Collected rather than written into a zeroed vector: one pass
+        // over the new memory instead of two.
+        let leaf_bounds = indices
+            .iter()
+            .map(|&i| prims.get(i as usize).map(Primitive::bounds))
+            .collect::<Option<Vec<Aabb>>>()
+            .ok_or(Error::PrimitiveCountMismatch {
+                tree: indices.iter().max().map_or(0, |&i| i as usize + 1),
+                given: prims.len(),
+            })?;
+        Ok(OwnedBvh {
+            bound: crate::tree::index_bound_of(&indices) as usize,
+            nodes,
+            indices,
+            leaf_bounds,
+            depth,
+            report,
+        })
+    }
+
+    /// The tree without its kept leaf bounds: what a layout converted for
+    /// compactness (for example [`QuantizedWide`](crate::layout::QuantizedWide))
+    /// shares, at 24 bytes per primitive less and slower pair queries.
+    pub fn plain_view(&self) -> Bvh<'_, B> {
+        Bvh::from_kept(
+            &self.nodes,
+            &self.indices,
+            &[],
+            self.depth,
+            self.bound,
+            self.report,
+        )
+    }
+
+    /// The tree as the core's borrowed view, leaf bounds attached. Costs
+    /// nothing: take one per query if that is simpler.
+    pub fn view(&self) -> Bvh<'_, B> {
+        // One bound per index entry, as built.
+        Bvh::from_kept(
+            &self.nodes,
+            &self.indices,
+            &self.leaf_bounds,
+            self.depth,
+            self.bound,
+            self.report,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Triangle;
+    use glam::Vec3;
+
+    /// The kept view is the view the raw parts give (same bound, depth,
+    /// leaf bounds and report), without the pass over the indices.
+    #[test]
+    fn the_kept_view_equals_the_raw_parts_view() {
+        let tris: Vec<Triangle> = (0..500)
+            .map(|i| {
+                let o = Vec3::new((i % 13) as f32, (i / 13) as f32, (i % 5) as f32 * 0.5);
+                Triangle::new(o, o + Vec3::X, o + Vec3::Z)
+            })
+            .collect();
+        let owned = OwnedBvh::<Aabb>::build(&TopDown::default(), &tris).unwrap();
+        let (kept, plain) = (owned.view(), owned.plain_view());
+        let raw = Bvh::from_raw_parts_with_bounds(
+            kept.nodes(),
+            kept.indices(),
+            kept.leaf_bounds().unwrap(),
+            kept.depth(),
+        )
+        .unwrap();
+        assert_eq!(kept.index_bound(), raw.index_bound());
+        assert_eq!(kept.index_bound(), 500);
+        assert_eq!(
+            (kept.depth(), kept.leaf_bounds()),
+            (raw.depth(), raw.leaf_bounds())
+        );
+        assert_eq!(plain.leaf_bounds(), None);
+        assert_eq!((plain.index_bound(), plain.depth()), (500, raw.depth()));
+        assert_eq!(kept.build_report(), owned.report);
+        for (k, &i) in kept.indices().iter().enumerate() {
+            assert_eq!(
+                kept.leaf_bounds().unwrap()[k],
+                crate::Primitive::bounds(&tris[i as usize])
+            );
+        }
+    }
+}
