@@ -728,6 +728,24 @@ pub trait Exercises {
     /// own plus one (wrapping past `u32::MAX` to 0). Return the new head of
     /// the free list.
     fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32;
+
+    /// Exercise 47: every triangle of `tris` within `distance` of `p`, in
+    /// increasing index order, found through `tree` (built over `tris`):
+    /// a broad phase, a region query with the box `p - distance ..= p +
+    /// distance` that prunes every node whose box misses it, then a narrow
+    /// phase, each candidate's exact distance. A triangle is within when
+    /// its closest point ([`Triangle::closest_point`], in `f64`) is at most
+    /// `distance` away: the squared distances compared in `f64`, touching
+    /// counts. The grader moves some nodes' boxes away from their
+    /// contents: nothing beneath such a node may be reported. It gives no
+    /// NaN, infinite or negative input; `tree` may be empty.
+    fn triangles_within(
+        &self,
+        tree: &Bvh<Aabb>,
+        tris: &[Triangle],
+        p: Vec3,
+        distance: f32,
+    ) -> Vec<u32>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

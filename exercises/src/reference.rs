@@ -1082,6 +1082,26 @@ impl Exercises for Reference {
         storage[node as usize] = storage[node as usize].released(free);
         node
     }
+
+    fn triangles_within(
+        &self,
+        tree: &Bvh<Aabb>,
+        tris: &[Triangle],
+        p: Vec3,
+        distance: f32,
+    ) -> Vec<u32> {
+        // As `Mesh::within` does it, on the tree given.
+        let limit = f64::from(distance) * f64::from(distance);
+        let region = Aabb::new(p - distance, p + distance);
+        let mut found = Vec::new();
+        let _ = tree.overlapping(tris, &region, |i| {
+            if tris[i as usize].closest_point(p).distance_squared <= limit {
+                found.push(i);
+            }
+        });
+        found.sort_unstable();
+        found
+    }
 }
 
 /// Exercise 40: `(best cost, primitives, first entry, cheaper as a leaf)`

@@ -635,4 +635,21 @@ impl Exercises for Student {
         let _ = (storage, free, node);
         todo!("exercise 46b")
     }
+
+    fn triangles_within(
+        &self,
+        tree: &Bvh<Aabb>,
+        tris: &[Triangle],
+        p: Vec3,
+        distance: f32,
+    ) -> Vec<u32> {
+        // Hint: `tree.overlapping(tris, &region, |i| ...)` is the broad
+        // phase (it prunes by the nodes' boxes and tests each triangle's
+        // box); in its callback, keep `i` when
+        // `tris[i].closest_point(p).distance_squared` is at most the
+        // distance squared, both in `f64`. Sort at the end: the tree
+        // reports in its own order.
+        let _ = (tree, tris, p, distance);
+        todo!("exercise 47")
+    }
 }

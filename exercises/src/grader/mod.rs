@@ -52,6 +52,7 @@ mod ex43_closest_pair;
 mod ex44_crossing_segment;
 mod ex45_penetration;
 mod ex46_handles;
+mod ex47_within;
 #[cfg(test)]
 mod wrong;
 
@@ -80,7 +81,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 46] = [
+pub const EXERCISES: [(u32, &str); 47] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -142,6 +143,7 @@ pub const EXERCISES: [(u32, &str); 46] = [
     (44, "where two triangles cross: the shared segment"),
     (45, "how deep two boxes or two spheres overlap"),
     (46, "handles that cannot lie: generations on a free list"),
+    (47, "within a distance: broad phase, then narrow phase"),
 ];
 
 /// A score for one exercise.
@@ -208,6 +210,7 @@ pub fn checks() -> Vec<Check> {
         ex44_crossing_segment::checks(),
         ex45_penetration::checks(),
         ex46_handles::checks(),
+        ex47_within::checks(),
     ]
     .concat()
 }
@@ -421,7 +424,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 515/515 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 523/523 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -50,6 +50,7 @@ use super::ex43_closest_pair;
 use super::ex44_crossing_segment;
 use super::ex45_penetration;
 use super::ex46_handles;
+use super::ex47_within;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -113,6 +114,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (44, ex44_crossing_segment::wrong::COUNT),
         (45, ex45_penetration::wrong::COUNT),
         (46, ex46_handles::wrong::COUNT),
+        (47, ex47_within::wrong::COUNT),
     ]
 }
 
@@ -373,5 +375,14 @@ impl Exercises for Wrong {
     }
     fn release_node(&self, storage: &mut [DynNode<Aabb>], free: u32, node: u32) -> u32 {
         ex46_handles::wrong::release_node(self.k(46), storage, free, node)
+    }
+    fn triangles_within(
+        &self,
+        tree: &Bvh<Aabb>,
+        tris: &[Triangle],
+        p: Vec3,
+        distance: f32,
+    ) -> Vec<u32> {
+        ex47_within::wrong::triangles_within(self.k(47), tree, tris, p, distance)
     }
 }
