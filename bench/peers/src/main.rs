@@ -11,6 +11,10 @@
 //! Run it through `scripts/bench-peers` (it fetches the meshes first):
 //! `bvhkit-bench-peers [--quick] [--rays N] [--mesh FILE]... [--no-instanced] [--out DIR]`
 //!
+//! `--tasks` runs only the engine tasks (`tasks.rs`: rays and closest
+//! points through each crate's one-call mesh API, timed end to end) and
+//! writes `tasks.md` and `tasks.jsonl` instead.
+//!
 //! `--broad-phase` runs only the broad-phase comparison (`broad_phase.rs`:
 //! moving boxes, bvhkit's `PairTracker` and rebuild against parry3d's
 //! incremental `Bvh`) and writes `broad-phase.md` instead.
@@ -22,6 +26,7 @@ mod obvhs_peer;
 mod ours;
 mod parry;
 mod report;
+mod tasks;
 mod truth;
 
 use common::{Measured, Runs, Scene};
@@ -47,6 +52,7 @@ const COPIES: (usize, usize) = (5, 4);
 struct Options {
     quick: bool,
     broad_phase: bool,
+    tasks: bool,
     rays: usize,
     meshes: Vec<PathBuf>,
     instanced: bool,
@@ -57,6 +63,7 @@ fn options() -> Result<Options, String> {
     let mut o = Options {
         quick: false,
         broad_phase: false,
+        tasks: false,
         rays: 0,
         meshes: Vec::new(),
         instanced: true,
@@ -68,12 +75,13 @@ fn options() -> Result<Options, String> {
         match a.as_str() {
             "--quick" => o.quick = true,
             "--broad-phase" => o.broad_phase = true,
+            "--tasks" => o.tasks = true,
             "--no-instanced" => o.instanced = false,
             "--rays" => o.rays = value()?.parse().map_err(|e| format!("--rays: {e}"))?,
             "--mesh" => o.meshes.push(value()?.into()),
             "--out" => o.out = value()?.into(),
             "-h" | "--help" => return Err(
-                "usage: bvhkit-bench-peers [--quick] [--broad-phase] [--rays N] [--mesh FILE]... \
+                "usage: bvhkit-bench-peers [--quick] [--broad-phase | --tasks] [--rays N] [--mesh FILE]... \
                             [--no-instanced] [--out DIR]"
                     .into(),
             ),
@@ -117,6 +125,10 @@ fn main() {
     let started = Instant::now();
     if o.broad_phase {
         broad_phase_only(&o, started);
+        return;
+    }
+    if o.tasks {
+        tasks_only(&o, runs, sample, started);
         return;
     }
     let mut results = Vec::new();
@@ -184,6 +196,50 @@ fn broad_phase_only(o: &Options, started: Instant) {
     eprintln!("wrote {}", path.display());
     if cases.iter().any(|c| !c.agree) {
         eprintln!("WRONG ANSWERS: broad-phase pair counts disagree");
+        std::process::exit(1);
+    }
+}
+
+/// The engine tasks alone, on every mesh (not the instanced one): prints
+/// them, writes `tasks.md` and `tasks.jsonl`, and exits non-zero if an
+/// answer is wrong.
+fn tasks_only(o: &Options, runs: Runs, sample: usize, started: Instant) {
+    let points = if o.quick { 10_000 } else { 100_000 };
+    let mut rows = Vec::new();
+    for path in &o.meshes {
+        let tris = match bvhkit_std::mesh::load(path) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(1);
+            }
+        };
+        let name = path
+            .file_stem()
+            .map_or("mesh".into(), |s| s.to_string_lossy());
+        let name = name.split('-').next().unwrap_or("mesh").to_lowercase();
+        let scene = Scene::new(&name, tris, o.rays);
+        eprintln!("{name}: {} triangles", scene.a.len());
+        rows.extend(tasks::run(&scene, runs, points, sample));
+    }
+    let stamp = report::Stamp::now(BROAD_PHASE_PEERS, &o.quick, o.rays, runs, started.elapsed());
+    let md = tasks::markdown(&rows, &stamp, o.rays, points);
+    println!("{md}");
+    let jsonl: String = rows
+        .iter()
+        .filter_map(|r| serde_json::to_string(r).ok())
+        .map(|l| l + "\n")
+        .collect();
+    let written = std::fs::create_dir_all(&o.out)
+        .and_then(|()| std::fs::write(o.out.join("tasks.md"), &md))
+        .and_then(|()| std::fs::write(o.out.join("tasks.jsonl"), jsonl));
+    if let Err(e) = written {
+        eprintln!("could not write {}: {e}", o.out.display());
+        std::process::exit(1);
+    }
+    eprintln!("wrote {}/tasks.md and tasks.jsonl", o.out.display());
+    if rows.iter().any(|r| !r.correct) {
+        eprintln!("WRONG ANSWERS in the tasks");
         std::process::exit(1);
     }
 }
