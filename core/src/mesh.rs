@@ -191,7 +191,9 @@ impl Mesh {
     /// barycentric coordinates and feature. `None` for an empty mesh, and
     /// for a `p` with a NaN or infinite coordinate (no point is closest).
     pub fn closest_point(&self, p: Vec3) -> Option<PointHit> {
-        let near = self.tree.view().nearest(&self.triangles, p, ()).ok()??;
+        let tree = self.tree.view();
+        let near =
+            crate::query::nearest::nearest_nearer_first(&tree, &self.triangles, p).ok()??;
         let c = self.triangles.get(near.prim as usize)?.closest_point(p);
         Some(PointHit {
             triangle: near.prim,

@@ -15,7 +15,7 @@ mod collect;
 mod descent;
 mod distance;
 mod heap;
-mod nearest;
+pub(crate) mod nearest;
 mod pair;
 mod ray;
 mod self_pairs;

@@ -307,7 +307,10 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
             break;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(prims, point, here, &mut best, &mut tally),
+            Content::Leaf(here) => {
+                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
+                nearest_in_leaf(prims, point, here, kept, &mut best, &mut tally)
+            }
             Content::Inner(kids) => {
                 tally.bv_tests(kids.as_slice().len() as u32);
                 for &c in kids.as_slice() {
@@ -325,15 +328,82 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
     Ok(best)
 }
 
+/// The nearest primitive by a depth-first walk that opens the nearer child
+/// first and carries each node's bound on the stack: the same answer as
+/// the best-first [`nearest`] (the same candidates, the same tie rule),
+/// without a priority queue to keep in order. Cheaper per node where the
+/// tree is small against the queue's bookkeeping; what [`Mesh`] uses.
+///
+/// [`Mesh`]: crate::Mesh
+#[cfg(feature = "alloc")]
+pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
+    h: &H,
+    prims: &[P],
+    point: Vec3,
+) -> Result<Option<Nearest>, Error> {
+    check_query(h, prims.len())?;
+    if !point.is_finite() {
+        return Err(Error::InvalidQuery("the query point must be finite"));
+    }
+    if h.is_empty() {
+        return Ok(None);
+    }
+    let p = point.as_dvec3();
+    let mut best: Option<Nearest> = None;
+    let root = h.root();
+    let mut stack =
+        Stack::<(f64, u32), DFS_STACK>::with((lower_bound(&h.bv(root), p), root), h.depth());
+    let mut none = ();
+    while let Some((bound, n)) = stack.pop() {
+        if best.is_some_and(|b| bound > b.distance_squared) {
+            continue;
+        }
+        match h.content(n) {
+            Content::Leaf(here) => {
+                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
+                nearest_in_leaf(prims, point, here, kept, &mut best, &mut none);
+            }
+            Content::Inner(kids) => {
+                let kids = kids.as_slice();
+                let mut order = [(0.0f64, 0u32); crate::tree::hierarchy::MAX_CHILDREN];
+                for (slot, &c) in order.iter_mut().zip(kids) {
+                    *slot = (lower_bound(&h.bv(c), p), c);
+                }
+                let order = &mut order[..kids.len()];
+                // Farthest pushed first, so the nearest is opened next.
+                order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+                for &(bc, c) in order.iter() {
+                    if best.is_some_and(|b| bc > b.distance_squared) {
+                        continue;
+                    }
+                    stack.push((bc, c))?;
+                }
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// The leaf's primitives against the best so far. With the leaf's kept
+/// bounds (`kept[k]` bounds `here[k]`), a primitive whose box is already
+/// farther than the best is passed over without its exact distance (a box
+/// holds its primitive, so the primitive is no nearer).
 fn nearest_in_leaf<P: PointDistance>(
     prims: &[P],
     point: Vec3,
     here: &[u32],
+    kept: Option<&[Aabb]>,
     best: &mut Option<Nearest>,
     tally: &mut impl Tally,
 ) {
     tally.prim_tests(here.len() as u32);
-    for &i in here {
+    let p = point.as_dvec3();
+    for (k, &i) in here.iter().enumerate() {
+        if let (Some(b), Some(kept)) = (*best, kept) {
+            if lower_bound(&kept[k], p) > b.distance_squared {
+                continue;
+            }
+        }
         let cand = Nearest {
             prim: i,
             distance_squared: prims[i as usize].distance_squared(point),
@@ -361,7 +431,10 @@ fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(prims, point, here, best, tally),
+            Content::Leaf(here) => {
+                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
+                nearest_in_leaf(prims, point, here, kept, best, tally)
+            }
             Content::Inner(kids) => {
                 for &c in kids.as_slice().iter().rev() {
                     stack.push(c)?;
