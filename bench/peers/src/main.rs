@@ -238,8 +238,9 @@ fn tasks_only(o: &Options, runs: Runs, sample: usize, started: Instant) {
         std::process::exit(1);
     }
     eprintln!("wrote {}/tasks.md and tasks.jsonl", o.out.display());
-    if rows.iter().any(|r| !r.correct) {
-        eprintln!("WRONG ANSWERS in the tasks");
+    // bvhkit's answers must be exact; a peer's wrong ones are reported.
+    if rows.iter().any(|r| !r.correct && r.krate == "bvhkit") {
+        eprintln!("WRONG ANSWERS from bvhkit in the tasks");
         std::process::exit(1);
     }
 }

@@ -8,18 +8,26 @@
 //! - `closest-points`: the closest point of the mesh to every point of a
 //!   seeded set in the mesh's box; bvhkit's `Mesh::closest_point`, parry3d's
 //!   `TriMesh` with `project_local_point` (not solid: the surface).
+//! - `mesh-pairs`: every intersecting pair of triangles of the mesh and its
+//!   moved copy (the scene's `b`, given to both crates as triangles);
+//!   bvhkit's `Mesh::pairs`, parry3d's `Bvh::leaf_pairs` of two `TriMesh`es
+//!   with `query::intersection_test` on each pair of triangles.
 //!
 //! Each crate gets the mesh as it takes it, converted untimed: bvhkit a
 //! `Vec<Triangle>`, parry3d vertices and index triples. Every sampled
 //! answer is compared with brute force over every triangle: bvhkit's must
 //! be equal, parry3d's within a relative 1e-4 (its arithmetic is its own).
+//! The pairs are compared whole with the exact answer (`truth::exact_pairs`);
+//! a peer's wrong pairs are counted and reported, not fatal.
 //! The moving-boxes task is the `--broad-phase` section.
 
 use crate::common::{random_rays, time, union, Runs, Scene, Timing};
 use bvhkit::glam::Vec3;
+use bvhkit::Rigid;
 use bvhkit::{Mesh, Triangle};
+use parry3d::math::Pose;
 use parry3d::math::Vector;
-use parry3d::query::{PointQuery, Ray as ParryRay, RayCast};
+use parry3d::query::{intersection_test, PointQuery, Ray as ParryRay, RayCast};
 use parry3d::shape::TriMesh;
 
 /// One task run by one crate.
@@ -38,6 +46,8 @@ pub struct TaskRow {
     pub lines: usize,
     /// Every sampled answer agreed with brute force.
     pub correct: bool,
+    /// Answers that did not (for pairs: pairs reported wrongly or missed).
+    pub wrong: usize,
     /// How many answers were sampled.
     pub checked: usize,
 }
@@ -80,6 +90,8 @@ pub fn run(scene: &Scene, runs: Runs, points: usize, sample: usize) -> Vec<TaskR
         .map(|r| r.origin())
         .collect();
     let parry_points: Vec<Vector> = queries.iter().map(|&p| vector(p)).collect();
+    let moved: &[Triangle] = &scene.b;
+    let moved_vertices: Vec<Vector> = moved.iter().flat_map(|t| t.v.map(vector)).collect();
 
     let (ours_rays, hits) = time(runs.rays, || {
         // task: bvhkit rays
@@ -125,6 +137,45 @@ pub fn run(scene: &Scene, runs: Runs, points: usize, sample: usize) -> Vec<TaskR
         near
     });
 
+    let (ours_pairs, pairs) = time(runs.pairs, || {
+        // task: bvhkit mesh-pairs
+        let a = Mesh::new(tris.to_vec()).expect("a valid mesh");
+        let b = Mesh::new(moved.to_vec()).expect("a valid mesh");
+        let pairs = a.pairs(&b, &Rigid::IDENTITY);
+        // end of task
+        pairs
+    });
+    let (parry_pairs_ms, parry_pairs) = time(runs.pairs, || {
+        // task: parry3d mesh-pairs
+        let a = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
+        let b = TriMesh::new(moved_vertices.clone(), indices.clone()).expect("a valid mesh");
+        let (pose, bvh_b) = (Pose::IDENTITY, b.bvh());
+        let mut pairs: Vec<(u32, u32)> = a
+            .bvh()
+            .leaf_pairs(bvh_b, |x, y| x.intersects(y))
+            .filter(|&(i, j)| {
+                intersection_test(&pose, &a.triangle(i), &pose, &b.triangle(j))
+                    .is_ok_and(|hit| hit.intersecting)
+            })
+            .collect();
+        pairs.sort_unstable();
+        // end of task
+        pairs
+    });
+    let exact = crate::truth::exact_pairs(scene);
+    let differ = |got: &[(u32, u32)]| {
+        let extra = got
+            .iter()
+            .filter(|p| exact.binary_search(p).is_err())
+            .count();
+        let missed = exact
+            .iter()
+            .filter(|p| got.binary_search(p).is_err())
+            .count();
+        extra + missed
+    };
+    let (ours_wrong, parry_wrong) = (differ(&pairs), differ(&parry_pairs));
+
     // Brute force on a sample of each.
     let step = |n: usize| (n / sample.max(1)).max(1);
     let ray_sample: Vec<usize> = (0..rays.len()).step_by(step(rays.len())).collect();
@@ -143,58 +194,60 @@ pub fn run(scene: &Scene, runs: Runs, points: usize, sample: usize) -> Vec<TaskR
         })
         .collect();
     let close = |x: f64, y: f64| (x - y).abs() <= 1e-4 * y.abs().max(1.0);
-    let rays_equal = ray_sample
+    let rays_wrong = ray_sample
         .iter()
         .zip(&truth_rays)
-        .all(|(&k, t)| hits[k] == *t);
-    let rays_close = ray_sample
+        .filter(|&(&k, t)| hits[k] != *t)
+        .count();
+    let parry_rays_wrong = ray_sample
         .iter()
         .zip(&truth_rays)
-        .all(|(&k, t)| match (parry_hits[k], t) {
-            (Some(a), Some(b)) => close(f64::from(a), f64::from(*b)),
-            (None, None) => true,
-            _ => false,
-        });
-    let points_equal = point_sample
+        .filter(|&(&k, t)| match (parry_hits[k], t) {
+            (Some(a), Some(b)) => !close(f64::from(a), f64::from(*b)),
+            (None, None) => false,
+            _ => true,
+        })
+        .count();
+    let points_wrong = point_sample
         .iter()
         .zip(&truth_points)
-        .all(|(&k, &d)| near[k] == d);
-    let points_close = point_sample
+        .filter(|&(&k, &d)| near[k] != d)
+        .count();
+    let parry_points_wrong = point_sample
         .iter()
         .zip(&truth_points)
-        .all(|(&k, &d)| close(f64::from(parry_near[k]), d));
+        .filter(|&(&k, &d)| !close(f64::from(parry_near[k]), d))
+        .count();
 
-    let row = |task, krate, ms, correct, checked| TaskRow {
+    let row = |task, krate, ms, wrong, checked| TaskRow {
         mesh: scene.name.clone(),
         task,
         krate,
         ms,
         lines: lines_of(&format!("{krate} {task}")),
-        correct,
+        correct: wrong == 0,
+        wrong,
         checked,
     };
+    let (nr, np) = (ray_sample.len(), point_sample.len());
     vec![
-        row("rays", "bvhkit", ours_rays, rays_equal, ray_sample.len()),
-        row(
-            "rays",
-            "parry3d",
-            parry_rays_ms,
-            rays_close,
-            ray_sample.len(),
-        ),
-        row(
-            "closest-points",
-            "bvhkit",
-            ours_points,
-            points_equal,
-            point_sample.len(),
-        ),
+        row("rays", "bvhkit", ours_rays, rays_wrong, nr),
+        row("rays", "parry3d", parry_rays_ms, parry_rays_wrong, nr),
+        row("closest-points", "bvhkit", ours_points, points_wrong, np),
         row(
             "closest-points",
             "parry3d",
             parry_points_ms,
-            points_close,
-            point_sample.len(),
+            parry_points_wrong,
+            np,
+        ),
+        row("mesh-pairs", "bvhkit", ours_pairs, ours_wrong, exact.len()),
+        row(
+            "mesh-pairs",
+            "parry3d",
+            parry_pairs_ms,
+            parry_wrong,
+            exact.len(),
         ),
     ]
 }
@@ -225,7 +278,7 @@ pub fn markdown(
             if r.correct {
                 format!("{} ok", r.checked)
             } else {
-                "WRONG".to_string()
+                format!("{} of {} wrong", r.wrong, r.checked)
             }
         };
         md.push_str(&format!(
@@ -245,6 +298,10 @@ pub fn markdown(
         "\n- rays: {rays} random rays per mesh aimed into its box, closest hit.\n\
          - closest-points: {points} seeded points in the mesh's box, the closest point of \
          the surface.\n\
+         - mesh-pairs: the mesh against its moved copy, every intersecting pair of \
+         triangles, checked whole against the exact answer (the pairs of overlapping boxes, \
+         each decided with exact predicates); wrong: pairs reported that do not intersect \
+         plus pairs missed.\n\
          - moving boxes: see `--broad-phase` (`broad-phase.md`).\n"
     ));
     md
@@ -262,6 +319,8 @@ mod tests {
             "parry3d rays",
             "bvhkit closest-points",
             "parry3d closest-points",
+            "bvhkit mesh-pairs",
+            "parry3d mesh-pairs",
         ] {
             let n = lines_of(name);
             assert!((3..15).contains(&n), "{name}: {n} lines");
@@ -278,9 +337,11 @@ mod tests {
             rays: 1,
         };
         let rows = run(&scene, runs, 200, 50);
-        assert_eq!(rows.len(), 4);
+        assert_eq!(rows.len(), 6);
         for r in &rows {
-            assert!(r.correct && r.checked > 10, "{r:?}");
+            assert!(r.checked > 10, "{r:?}");
+            // bvhkit is exact; the peer's rays and points are within 1e-4.
+            assert!(r.correct || r.task == "mesh-pairs", "{r:?}");
         }
     }
 }

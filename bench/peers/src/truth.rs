@@ -10,12 +10,33 @@ use crate::common::{boxes_overlap, hit_triangle, PairSum, RayHit, Scene};
 use bvhkit::glam::{IVec3, Vec3};
 use std::collections::HashMap;
 
+/// Every pair `(i, j)` of triangles of `a` and `b` that intersect, sorted:
+/// the box pairs of [`pairs`]' grid, each decided by the exact triangle
+/// test (`bvhkit::Exact`, exact predicates): the definition of the answer.
+pub fn exact_pairs(scene: &Scene) -> Vec<(u32, u32)> {
+    use bvhkit::Answer;
+    let mut out = Vec::new();
+    grid_pairs(scene, |i, j| {
+        if bvhkit::Exact.accept(&scene.a[i as usize], &scene.b[j as usize]) {
+            out.push((i, j));
+        }
+    });
+    out.sort_unstable();
+    out
+}
+
 /// Every pair `(i, j)` whose boxes overlap, with its checksum.
 pub fn pairs(scene: &Scene) -> PairSum {
-    let (a, b) = (&scene.boxes_a, &scene.boxes_b);
     let mut sum = PairSum::default();
+    grid_pairs(scene, |i, j| sum.add(i, j));
+    sum
+}
+
+/// Calls `f` once for every pair `(i, j)` whose boxes overlap.
+fn grid_pairs(scene: &Scene, mut f: impl FnMut(u32, u32)) {
+    let (a, b) = (&scene.boxes_a, &scene.boxes_b);
     if a.is_empty() || b.is_empty() {
-        return sum;
+        return;
     }
     // Cells about twice the mean box size: few cells per box, few boxes per cell.
     let mean: Vec3 = b.iter().map(|q| q.max - q.min).sum::<Vec3>() / b.len() as f32;
@@ -33,12 +54,11 @@ pub fn pairs(scene: &Scene) -> PairSum {
             for &j in grid.get(&c).map_or(&[][..], Vec::as_slice) {
                 let q = &b[j as usize];
                 if boxes_overlap(p, q) && cell_of(p.min.max(q.min)) == c {
-                    sum.add(i as u32, j);
+                    f(i as u32, j);
                 }
             }
         });
     }
-    sum
 }
 
 fn for_cells(lo: IVec3, hi: IVec3, mut f: impl FnMut(IVec3)) {
