@@ -120,6 +120,50 @@ impl Mesh {
         Mesh::with_builder(triangles, &TopDown::default())
     }
 
+    /// A mesh given as shared vertices and a triple of vertex indices per
+    /// triangle (as mesh files and engines keep it), built as
+    /// [`new`](Self::new) builds. Errors as `new`, and
+    /// [`Error::VertexIndexOutOfRange`] naming the first triangle with an
+    /// index past `vertices`.
+    ///
+    /// ```
+    /// use bvhkit::{Error, Mesh};
+    /// use bvhkit::glam::Vec3;
+    /// // A unit square of two triangles sharing an edge.
+    /// let vertices = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+    /// let square = Mesh::from_indexed(&vertices, &[[0, 1, 2], [0, 2, 3]])?;
+    /// assert_eq!(square.triangles().len(), 2);
+    /// assert_eq!(square.closest_point(Vec3::new(0.25, 0.75, 1.0)).unwrap().triangle, 1);
+    /// assert_eq!(
+    ///     Mesh::from_indexed(&vertices, &[[0, 1, 4]]).unwrap_err(),
+    ///     Error::VertexIndexOutOfRange { triangle: 0, vertices: 4 }
+    /// );
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn from_indexed(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Result<Mesh, Error> {
+        let corner = |k: usize, i: u32| {
+            vertices
+                .get(i as usize)
+                .copied()
+                .ok_or(Error::VertexIndexOutOfRange {
+                    triangle: k,
+                    vertices: vertices.len(),
+                })
+        };
+        let tris = triangles
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                Ok(Triangle::new(
+                    corner(k, t[0])?,
+                    corner(k, t[1])?,
+                    corner(k, t[2])?,
+                ))
+            })
+            .collect::<Result<Vec<Triangle>, Error>>()?;
+        Mesh::new(tris)
+    }
+
     /// [`new`](Self::new) with another top-down configuration.
     pub fn with_builder(triangles: Vec<Triangle>, builder: &TopDown) -> Result<Mesh, Error> {
         let tree = OwnedBvh::build(builder, &triangles)?;

@@ -171,3 +171,28 @@ fn within_keeps_a_triangle_at_exactly_the_distance_far_from_the_origin() {
         assert_eq!(mesh.closest_point(p).unwrap().distance, f64::from(d));
     }
 }
+
+proptest! {
+    #![proptest_config(proptest_config(32))]
+
+    /// A mesh from shared vertices and index triples is the mesh of the
+    /// triangles they name; an index past the vertices names its triangle.
+    #[test]
+    fn an_indexed_mesh_is_the_mesh_of_its_triangles(
+        tris in scene(40),
+        bad in any::<prop::sample::Index>(),
+    ) {
+        // Weld nothing: three vertices per triangle, in order.
+        let vertices: Vec<Vec3> = tris.iter().flat_map(|t| t.v).collect();
+        let corners: Vec<[u32; 3]> = (0..tris.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+        let mesh = Mesh::from_indexed(&vertices, &corners).unwrap();
+        prop_assert_eq!(mesh.triangles(), &tris[..]);
+        let mut broken = corners.clone();
+        let k = bad.index(broken.len());
+        broken[k][1] = vertices.len() as u32;
+        prop_assert_eq!(
+            Mesh::from_indexed(&vertices, &broken).unwrap_err(),
+            Error::VertexIndexOutOfRange { triangle: k, vertices: vertices.len() }
+        );
+    }
+}
