@@ -2,7 +2,7 @@
 //!
 //! Each exercise is a method of the [`Exercises`] trait. Your answers go in
 //! [`student.rs`](student) (they start as `todo!()`); the reference answers in
-//! [`reference`] use the library. The grader runs the same checks on either:
+//! [`reference`](mod@reference) use the library. The grader runs the same checks on either:
 //!
 //! ```text
 //! cargo run -p bvhkit-exercises --bin grade                # grades your answers

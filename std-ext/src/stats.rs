@@ -14,7 +14,7 @@ use std::mem::size_of;
 /// What to build.
 #[derive(Clone, Debug)]
 pub struct StatsOptions {
-    /// A builder preset name (see [`PRESETS`]).
+    /// A builder preset name (see [`PRESETS`](bvhkit::builders::PRESETS)).
     pub builder: String,
     /// One of [`VOLUMES`].
     pub volume: String,
