@@ -93,14 +93,7 @@ impl<B: BoundingVolume> CachedStorage<B> {
         // Zero bits again: the first write is the only pass over the pages.
         let mut leaf_bounds = vec![Aabb::ZERO; n];
         copy_bounds(&cache, &mut leaf_bounds, fork);
-        OwnedBvh {
-            bound: crate::tree::index_bound_of(&indices) as usize,
-            nodes,
-            indices,
-            leaf_bounds,
-            depth,
-            report,
-        }
+        OwnedBvh::keep(nodes, indices, leaf_bounds, depth, report)
     }
 }
 
@@ -119,6 +112,25 @@ fn copy_bounds<F: Fork>(cache: &[PrimitiveRef], out: &mut [Aabb], fork: &F) {
 }
 
 impl<B: BoundingVolume> OwnedBvh<B> {
+    /// A built tree's parts, kept with their index bound (one pass over the
+    /// indices here, none per view).
+    fn keep(
+        nodes: Vec<Node<B>>,
+        indices: Vec<u32>,
+        leaf_bounds: Vec<Aabb>,
+        depth: usize,
+        report: BuildReport,
+    ) -> Self {
+        OwnedBvh {
+            bound: crate::tree::index_bound_of(&indices) as usize,
+            nodes,
+            indices,
+            leaf_bounds,
+            depth,
+            report,
+        }
+    }
+
     /// Builds into freshly allocated storage (with the bounds cache of
     /// [`TopDown::build_cached`]), then trims it to what was used.
     pub fn build<P: Primitive>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
@@ -253,17 +265,10 @@ impl<B: BoundingVolume> OwnedBvh<B> {
             .map(|&i| prims.get(i as usize).map(Primitive::bounds))
             .collect::<Option<Vec<Aabb>>>()
             .ok_or(Error::PrimitiveCountMismatch {
-                tree: indices.iter().max().map_or(0, |&i| i as usize + 1),
+                tree: crate::tree::index_bound_of(&indices) as usize,
                 given: prims.len(),
             })?;
-        Ok(OwnedBvh {
-            bound: crate::tree::index_bound_of(&indices) as usize,
-            nodes,
-            indices,
-            leaf_bounds,
-            depth,
-            report,
-        })
+        Ok(OwnedBvh::keep(nodes, indices, leaf_bounds, depth, report))
     }
 
     /// The tree without its kept leaf bounds: what a layout converted for

@@ -133,17 +133,7 @@ fn main() {
     }
     let mut results = Vec::new();
     for path in &o.meshes {
-        let tris = match bvhkit_std::mesh::load(path) {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("{e}");
-                std::process::exit(1);
-            }
-        };
-        let name = path
-            .file_stem()
-            .map_or("mesh".into(), |s| s.to_string_lossy());
-        let name = name.split('-').next().unwrap_or("mesh").to_lowercase();
+        let (name, tris) = load(path);
         if o.instanced && name == "armadillo" {
             let copies = instanced(&tris);
             results.push(bench(Scene::new(&name, tris, o.rays), runs, sample));
@@ -200,6 +190,23 @@ fn broad_phase_only(o: &Options, started: Instant) {
     }
 }
 
+/// A mesh file and its short name (the file name up to its first `-`,
+/// lower case); exits with the loader's error (file and line) if it fails.
+fn load(path: &std::path::Path) -> (String, Vec<bvhkit::Triangle>) {
+    let tris = match bvhkit_std::mesh::load(path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let name = path
+        .file_stem()
+        .map_or("mesh".into(), |s| s.to_string_lossy());
+    let name = name.split('-').next().unwrap_or("mesh").to_lowercase();
+    (name, tris)
+}
+
 /// The engine tasks alone, on every mesh (not the instanced one): prints
 /// them, writes `tasks.md` and `tasks.jsonl`, and exits non-zero if an
 /// answer is wrong.
@@ -207,17 +214,7 @@ fn tasks_only(o: &Options, runs: Runs, sample: usize, started: Instant) {
     let points = if o.quick { 10_000 } else { 100_000 };
     let mut rows = Vec::new();
     for path in &o.meshes {
-        let tris = match bvhkit_std::mesh::load(path) {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("{e}");
-                std::process::exit(1);
-            }
-        };
-        let name = path
-            .file_stem()
-            .map_or("mesh".into(), |s| s.to_string_lossy());
-        let name = name.split('-').next().unwrap_or("mesh").to_lowercase();
+        let (name, tris) = load(path);
         let scene = Scene::new(&name, tris, o.rays);
         eprintln!("{name}: {} triangles", scene.a.len());
         rows.extend(tasks::run(&scene, runs, points, sample));

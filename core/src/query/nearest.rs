@@ -290,11 +290,7 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
     point: Vec3,
     mut tally: impl Tally,
 ) -> Result<Option<Nearest>, Error> {
-    check_query(h, prims.len())?;
-    if !point.is_finite() {
-        return Err(Error::InvalidQuery("the query point must be finite"));
-    }
-    if h.is_empty() {
+    if !can_search(h, prims.len(), point)? {
         return Ok(None);
     }
     let p = point.as_dvec3();
@@ -307,10 +303,7 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
             break;
         }
         match h.content(n) {
-            Content::Leaf(here) => {
-                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
-                nearest_in_leaf(prims, point, here, kept, &mut best, &mut tally)
-            }
+            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, &mut best, &mut tally),
             Content::Inner(kids) => {
                 tally.bv_tests(kids.as_slice().len() as u32);
                 for &c in kids.as_slice() {
@@ -341,11 +334,7 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
     prims: &[P],
     point: Vec3,
 ) -> Result<Option<Nearest>, Error> {
-    check_query(h, prims.len())?;
-    if !point.is_finite() {
-        return Err(Error::InvalidQuery("the query point must be finite"));
-    }
-    if h.is_empty() {
+    if !can_search(h, prims.len(), point)? {
         return Ok(None);
     }
     let p = point.as_dvec3();
@@ -359,10 +348,7 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => {
-                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
-                nearest_in_leaf(prims, point, here, kept, &mut best, &mut none);
-            }
+            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, &mut best, &mut none),
             Content::Inner(kids) => {
                 let kids = kids.as_slice();
                 let mut order = [(0.0f64, 0u32); crate::tree::hierarchy::MAX_CHILDREN];
@@ -384,18 +370,30 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
     Ok(best)
 }
 
-/// The leaf's primitives against the best so far. With the leaf's kept
-/// bounds (`kept[k]` bounds `here[k]`), a primitive whose box is already
-/// farther than the best is passed over without its exact distance (a box
-/// holds its primitive, so the primitive is no nearer).
-fn nearest_in_leaf<P: PointDistance>(
+/// The checks every nearest search makes first; `Ok(false)` for an empty
+/// tree (nothing is nearest).
+fn can_search<H: Hierarchy + ?Sized>(h: &H, prims: usize, point: Vec3) -> Result<bool, Error> {
+    check_query(h, prims)?;
+    if !point.is_finite() {
+        return Err(Error::InvalidQuery("the query point must be finite"));
+    }
+    Ok(!h.is_empty())
+}
+
+/// Leaf `n`'s primitives (`here`) against the best so far. With the tree's
+/// kept bounds for the leaf, a primitive whose box is already farther than
+/// the best is passed over without its exact distance (a box holds its
+/// primitive, so the primitive is no nearer).
+fn nearest_in_leaf<H: Hierarchy + ?Sized, P: PointDistance>(
+    h: &H,
+    n: u32,
+    here: &[u32],
     prims: &[P],
     point: Vec3,
-    here: &[u32],
-    kept: Option<&[Aabb]>,
     best: &mut Option<Nearest>,
     tally: &mut impl Tally,
 ) {
+    let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
     tally.prim_tests(here.len() as u32);
     let p = point.as_dvec3();
     for (k, &i) in here.iter().enumerate() {
@@ -431,10 +429,7 @@ fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => {
-                let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
-                nearest_in_leaf(prims, point, here, kept, best, tally)
-            }
+            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, best, tally),
             Content::Inner(kids) => {
                 for &c in kids.as_slice().iter().rev() {
                     stack.push(c)?;
