@@ -141,7 +141,8 @@ impl Axes {
 }
 
 /// The interface every bounding volume implements; builders and queries are
-/// generic over it.
+/// generic over it. A volume is plain data (`'static`: it borrows nothing),
+/// which lets an owned tree pick its storage by the volume's type.
 ///
 /// ```
 /// use bvhkit::{Aabb, BoundingVolume, Sphere};
@@ -152,7 +153,7 @@ impl Axes {
 /// assert!(pts.iter().all(|&p| s.contains_point(p) && b.contains_point(p)));
 /// assert!(s.overlaps(&Sphere::new(Vec3::new(3.0, 0.0, 0.0), 1.5)));
 /// ```
-pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq {
+pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq + 'static {
     /// Short name for tables ("aabb", "sphere", ...).
     const NAME: &'static str;
     /// The empty volume: the identity of [`merge`](Self::merge), contains nothing.
