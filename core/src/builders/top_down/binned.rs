@@ -162,7 +162,6 @@ fn plan_three_axes<S: Source, const N: usize>(
     let best = best_of_rows(
         [&lanes[0][..k], &lanes[1][..k], &lanes[2][..k]],
         [&counts[0][..k], &counts[1][..k], &counts[2][..k]],
-        range.len(),
         enabled,
         norm,
     );
@@ -314,13 +313,7 @@ fn score_row<S: Source>(
         }
     }
     let (row, count) = (&row[..k], &count[..k]);
-    let (cost, _, boundary) = best_of_rows(
-        [row; 3],
-        [count; 3],
-        range.len(),
-        [true, false, false],
-        norm,
-    )?;
+    let (cost, _, boundary) = best_of_rows([row; 3], [count; 3], [true, false, false], norm)?;
     let (mut halves, mut mid) = ([LaneBin::EMPTY; 2], 0u32);
     for j in 0..k {
         let side = usize::from(j >= boundary);
@@ -331,44 +324,54 @@ fn score_row<S: Source>(
 }
 
 /// The SAH-best boundary over rows of bins (one row per axis tried; bin `j`
-/// of row `a` holds `counts[a][j]` primitives, `n` in all, every row of the
-/// same length), as (cost, row, boundary). Each row is swept once from the
-/// right (costs kept) and once from the left, scoring without branches; the
-/// first of equal costs wins, within a row and across rows.
+/// of row `a` holds `counts[a][j]` primitives, every row of the same length
+/// and count), as (cost, row, boundary). Each row's non-empty bins are swept
+/// once from the right (costs kept) and once from the left, scoring without
+/// branches; the first of equal costs wins, within a row and across rows.
 // Not generic and out of line: one copy in the firmware, and the frame of
 // its cost array is not added to every caller's.
 #[inline(never)]
 fn best_of_rows(
     lanes: [&[LaneBin]; 3],
     counts: [&[u32]; 3],
-    n: usize,
     enabled: [bool; 3],
     norm: &Norm,
 ) -> Option<(f32, usize, usize)> {
     let mut pick: Option<(f32, usize, usize)> = None;
     let mut right = [0.0f32; MAX_BINS];
+    // The non-empty bins of a row, in order. Only they are swept: a boundary
+    // next to an empty bin splits the primitives as the one past it does,
+    // at the same cost (a union with an empty bin changes no bit), and the
+    // first of those, the one just after a non-empty bin, is the one the
+    // first-of-equal-costs rule would pick. The nodes near the leaves,
+    // most of the tree, fill a few of their bins.
+    let mut full = [0u8; MAX_BINS];
     for a in (0..3).filter(|&a| enabled[a]) {
         let (row, count) = (lanes[a], counts[a]);
         let k = row.len().min(count.len()).min(MAX_BINS);
+        let mut len = 0;
+        for (j, &c) in count[..k].iter().enumerate() {
+            full[len] = j as u8;
+            len += usize::from(c != 0);
+        }
+        let full = &full[..len];
         let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
-        for j in (1..k).rev() {
+        for q in (1..len).rev() {
+            let j = usize::from(full[q]);
             acc = acc.union(&row[j]);
             m += count[j];
-            right[j] = norm.half_area_lanes(&acc) * m as f32;
+            right[q] = norm.half_area_lanes(&acc) * m as f32;
         }
         let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
         let mut best = (f32::INFINITY, 0usize);
-        for j in 1..k {
-            left = left.union(&row[j - 1]);
-            m += count[j - 1];
-            let c = norm.half_area_lanes(&left) * m as f32 + right[j];
-            let c = if m != 0 && m as usize != n {
-                c
-            } else {
-                f32::INFINITY
-            };
+        for q in 1..len {
+            let j = usize::from(full[q - 1]);
+            left = left.union(&row[j]);
+            m += count[j];
+            // Never empty on either side: both hold a non-empty bin.
+            let c = norm.half_area_lanes(&left) * m as f32 + right[q];
             if c < best.0 {
-                best = (c, j);
+                best = (c, j + 1);
             }
         }
         if best.0 < f32::INFINITY && pick.is_none_or(|(b, _, _)| best.0 < b) {
@@ -443,6 +446,110 @@ mod tests {
             }
         }
         assert!(compared > 2000, "only {compared} plans compared");
+    }
+
+    /// The sweep over every boundary, empty bins included, as it was before
+    /// the sweep skipped them: the reference for the test below.
+    fn every_boundary(
+        lanes: [&[LaneBin]; 3],
+        counts: [&[u32]; 3],
+        n: usize,
+        enabled: [bool; 3],
+        norm: &Norm,
+    ) -> Option<(f32, usize, usize)> {
+        let mut pick: Option<(f32, usize, usize)> = None;
+        for a in (0..3).filter(|&a| enabled[a]) {
+            let (row, count) = (lanes[a], counts[a]);
+            let k = row.len();
+            let mut right = [0.0f32; MAX_BINS];
+            let (mut acc, mut m) = (LaneBin::EMPTY, 0u32);
+            for j in (1..k).rev() {
+                acc = acc.union(&row[j]);
+                m += count[j];
+                right[j] = norm.half_area_lanes(&acc) * m as f32;
+            }
+            let (mut left, mut m) = (LaneBin::EMPTY, 0u32);
+            let mut best = (f32::INFINITY, 0usize);
+            for j in 1..k {
+                left = left.union(&row[j - 1]);
+                m += count[j - 1];
+                let c = norm.half_area_lanes(&left) * m as f32 + right[j];
+                let c = if m != 0 && m as usize != n {
+                    c
+                } else {
+                    f32::INFINITY
+                };
+                if c < best.0 {
+                    best = (c, j);
+                }
+            }
+            if best.0 < f32::INFINITY && pick.is_none_or(|(b, _, _)| best.0 < b) {
+                pick = Some((best.0, a, best.1));
+            }
+        }
+        pick
+    }
+
+    /// Skipping the empty bins picks the boundary, row and cost (bit for
+    /// bit) that sweeping every boundary picks: rows mostly empty, rows
+    /// full, one bin full, and repeated bins (equal costs, where the first
+    /// must win), for every row length.
+    #[test]
+    fn skipping_empty_bins_picks_what_every_boundary_picks() {
+        let mut state = 11u64;
+        let norm = Norm::new(&Aabb::new(Vec3::ZERO, Vec3::splat(10.0)));
+        let mut picked = 0;
+        for case in 0..3000 {
+            let k = [2, 3, 4, 7, 8, 16, 32][case % 7];
+            let fill = [0.1f32, 0.5, 1.0][case % 3];
+            let mut lanes = [[LaneBin::EMPTY; MAX_BINS]; 3];
+            let mut counts = [[0u32; MAX_BINS]; 3];
+            let repeat = case % 4 == 0;
+            let mut n = [0usize; 3];
+            for a in 0..3 {
+                for j in 0..k {
+                    if next(&mut state) >= fill {
+                        continue;
+                    }
+                    let p = if repeat {
+                        Vec3::splat(1.0) // identical bins: equal costs
+                    } else {
+                        Vec3::new(next(&mut state), next(&mut state), next(&mut state)) * 9.0
+                    };
+                    let size = if repeat { 1.0 } else { next(&mut state) };
+                    let b = Aabb::new(p, p + Vec3::splat(size));
+                    lanes[a][j] = LaneBin {
+                        min: b.min.into(),
+                        max: b.max.into(),
+                    };
+                    counts[a][j] = if repeat {
+                        2
+                    } else {
+                        1 + (next(&mut state) * 5.0) as u32
+                    };
+                    n[a] += counts[a][j] as usize;
+                }
+            }
+            // Every row holds the same primitives, as binning makes them.
+            for a in 1..3 {
+                if n[a] != n[0] {
+                    lanes[a] = lanes[0];
+                    counts[a] = counts[0];
+                }
+            }
+            let rows = [&lanes[0][..k], &lanes[1][..k], &lanes[2][..k]];
+            let cs = [&counts[0][..k], &counts[1][..k], &counts[2][..k]];
+            let enabled = [true, case % 5 != 1, case % 6 != 2];
+            let bits = |p: Option<(f32, usize, usize)>| p.map(|(c, a, j)| (c.to_bits(), a, j));
+            let want = every_boundary(rows, cs, n[0], enabled, &norm);
+            assert_eq!(
+                bits(best_of_rows(rows, cs, enabled, &norm)),
+                bits(want),
+                "case {case}"
+            );
+            picked += usize::from(want.is_some());
+        }
+        assert!(picked > 1500, "only {picked} rows had a boundary");
     }
 
     /// Every field of a fast-path plan, floats as bits (so `-0.0` and
