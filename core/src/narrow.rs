@@ -89,6 +89,22 @@ impl Intersects<Triangle> for Aabb {
     }
 }
 
+/// Three corners are a [`Triangle`]: the same exact test.
+impl Intersects for [Vec3; 3] {
+    #[inline]
+    fn intersects(&self, other: &[Vec3; 3]) -> bool {
+        triangles_intersect(&Triangle::from(*self), &Triangle::from(*other))
+    }
+}
+
+/// Three corners and a box: the triangle's exact test.
+impl Intersects<Aabb> for [Vec3; 3] {
+    #[inline]
+    fn intersects(&self, other: &Aabb) -> bool {
+        box_triangle_intersect(other, &Triangle::from(*self))
+    }
+}
+
 /// A triangle and a box: exact ([`box_triangle_intersect`]).
 impl Intersects<Aabb> for Triangle {
     #[inline]

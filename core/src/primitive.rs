@@ -101,11 +101,30 @@ impl Primitive for Triangle {
     }
 }
 
-/// Three corners, as many mesh crates hand triangles out: bounds like a
-/// [`Triangle`] (the exact triangle test needs the `Triangle` type itself).
+/// Corners to a triangle, in the same order.
+impl From<[Vec3; 3]> for Triangle {
+    #[inline]
+    fn from(v: [Vec3; 3]) -> Triangle {
+        Triangle { v }
+    }
+}
+
+/// A triangle's corners.
+impl From<Triangle> for [Vec3; 3] {
+    #[inline]
+    fn from(t: Triangle) -> [Vec3; 3] {
+        t.v
+    }
+}
+
+/// Three corners, as many mesh crates hand triangles out: a [`Triangle`] in
+/// all but name. Bounds, ray casts, closest points, distances, rigid
+/// motions, self-pair adjacency and the exact intersection tests give the
+/// triangle's answers, so a `Vec<[Vec3; 3]>` from a loader needs no
+/// conversion.
 ///
 /// ```
-/// use bvhkit::{Aabb, Node, Primitive, TopDown};
+/// use bvhkit::{Aabb, Intersects, Node, Primitive, Query, Ray, RayOrder, TopDown};
 /// use glam::Vec3;
 /// let tris: Vec<[Vec3; 3]> = (0..8)
 ///     .map(|i| {
@@ -118,6 +137,11 @@ impl Primitive for Triangle {
 /// let mut idx = vec![0u32; tris.len()];
 /// let tree = TopDown::default().build(&tris, &mut nodes, &mut idx)?;
 /// assert_eq!(tree.primitive_count(), 8);
+/// // Straight down onto the third triangle, 1 unit below the ray's start.
+/// let down = Ray::new(Vec3::new(4.2, 0.2, 1.0), -Vec3::Z, f32::INFINITY)?;
+/// let hit = tree.cast_ray(&tris, &down, RayOrder::default(), ())?.unwrap();
+/// assert_eq!((hit.prim, hit.t), (2, 1.0));
+/// assert!(tris[0].intersects(&[Vec3::new(0.5, 0.2, -1.0), Vec3::new(0.5, 0.2, 1.0), Vec3::Z]));
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
 impl Primitive for [Vec3; 3] {

@@ -219,6 +219,13 @@ impl Transform for Triangle {
     }
 }
 
+impl Transform for [Vec3; 3] {
+    #[inline]
+    fn transformed(&self, t: &Rigid) -> [Vec3; 3] {
+        self.map(|p| t.apply(p))
+    }
+}
+
 impl Transform for Vec3 {
     #[inline]
     fn transformed(&self, t: &Rigid) -> Vec3 {

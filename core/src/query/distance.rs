@@ -108,6 +108,20 @@ impl PairDistance<Vec3> for Triangle {
     }
 }
 
+/// Three corners are a [`Triangle`].
+impl PairDistance<[Vec3; 3]> for Vec3 {
+    fn closest_points(&self, t: &[Vec3; 3]) -> ClosestPoints {
+        self.closest_points(&Triangle::from(*t))
+    }
+}
+
+/// Three corners are a [`Triangle`].
+impl PairDistance for [Vec3; 3] {
+    fn closest_points(&self, other: &[Vec3; 3]) -> ClosestPoints {
+        Triangle::from(*self).closest_points(&Triangle::from(*other))
+    }
+}
+
 impl PairDistance for Aabb {
     /// Per axis: the facing sides when the boxes are apart on it, the middle
     /// of the shared interval when they overlap on it.

@@ -56,6 +56,13 @@ impl PointDistance for Triangle {
     }
 }
 
+/// Three corners are a [`Triangle`].
+impl PointDistance for [Vec3; 3] {
+    fn distance_squared(&self, p: Vec3) -> f64 {
+        Triangle::from(*self).distance_squared(p)
+    }
+}
+
 impl<P: PointDistance> PointDistance for &P {
     fn distance_squared(&self, p: Vec3) -> f64 {
         (**self).distance_squared(p)

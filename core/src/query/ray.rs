@@ -278,6 +278,14 @@ impl RayTarget for Aabb {
     }
 }
 
+/// Three corners are a [`Triangle`]: the same test, the same answers.
+impl RayTarget for [Vec3; 3] {
+    #[inline]
+    fn ray_hit(&self, ray: &Ray) -> Option<f32> {
+        Triangle::from(*self).ray_hit(ray)
+    }
+}
+
 impl<P: RayTarget> RayTarget for &P {
     fn ray_hit(&self, ray: &Ray) -> Option<f32> {
         (**self).ray_hit(ray)

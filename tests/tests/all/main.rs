@@ -11,6 +11,7 @@ mod bad_input;
 mod bottom_up;
 mod broad_phase;
 mod contact;
+mod corners;
 mod distance;
 mod empty;
 mod equivalence;
