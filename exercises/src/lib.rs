@@ -746,6 +746,31 @@ pub trait Exercises {
         p: Vec3,
         distance: f32,
     ) -> Vec<u32>;
+
+    /// Exercise 48: rebuild every node above the leaves of the dynamic tree
+    /// in `storage` (rooted at `root`, [`NULL`](bvhkit::builders::NULL) when
+    /// empty; its free list starts at `free` and runs through `parent`), as
+    /// [`DynamicTree::rebuild`](bvhkit::builders::DynamicTree::rebuild)
+    /// does. Every leaf keeps its node, volume, item and generation (only
+    /// its `parent` changes). First every internal node is released as in
+    /// exercise 46b (blank, next generation, pushed on the free list); then
+    /// the tree over the leaves is built top down, each new internal node
+    /// taken from the head of the free list, keeping that node's generation,
+    /// with `bv` the union of its children's ([`Aabb::union`]), `height` one
+    /// more than the taller child's, `item` 0 and the children's `parent`
+    /// set. A set of two or more leaves splits along the longest side of the
+    /// box of its leaves' centres ([`Aabb::center`] of each `bv`; of equal
+    /// sides the first, x before y before z): ordered by the centre's
+    /// coordinate on that axis, then by node index, the first `len / 2` go
+    /// left. Return the new root (`NULL` for an empty tree) and the new head
+    /// of the free list. `scratch` has room for one entry per leaf.
+    fn rebuild_dynamic(
+        &self,
+        storage: &mut [DynNode<Aabb>],
+        root: u32,
+        free: u32,
+        scratch: &mut [u32],
+    ) -> (u32, u32);
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -1102,6 +1102,73 @@ impl Exercises for Reference {
         found.sort_unstable();
         found
     }
+
+    fn rebuild_dynamic(
+        &self,
+        storage: &mut [DynNode<Aabb>],
+        root: u32,
+        free: u32,
+        scratch: &mut [u32],
+    ) -> (u32, u32) {
+        // As `DynamicTree::rebuild` does it: one walk collects the leaves
+        // and releases the nodes above them, then a median build.
+        use bvhkit::builders::NULL;
+        if root == NULL {
+            return (NULL, free);
+        }
+        let (mut free, mut found) = (free, 0);
+        let mut stack = vec![root];
+        while let Some(i) = stack.pop() {
+            let node = storage[i as usize];
+            if node.left == NULL {
+                scratch[found] = i;
+                found += 1;
+            } else {
+                stack.push(node.left);
+                stack.push(node.right);
+                storage[i as usize] = node.released(free);
+                free = i;
+            }
+        }
+        fn build(storage: &mut [DynNode<Aabb>], leaves: &mut [u32], free: &mut u32) -> u32 {
+            if let [one] = leaves {
+                return *one;
+            }
+            let centre = |s: &[DynNode<Aabb>], i: u32| s[i as usize].bv.center();
+            let mut centres = Aabb::EMPTY;
+            for &i in leaves.iter() {
+                centres.grow(centre(storage, i));
+            }
+            let axis = centres.extent().max_position();
+            leaves.sort_by(|&a, &b| {
+                centre(storage, a)[axis]
+                    .total_cmp(&centre(storage, b)[axis])
+                    .then(a.cmp(&b))
+            });
+            let mid = leaves.len() / 2;
+            let (lo, hi) = leaves.split_at_mut(mid);
+            let left = build(storage, lo, free);
+            let right = build(storage, hi, free);
+            let parent = *free;
+            *free = storage[parent as usize].parent;
+            let (l, r) = (storage[left as usize], storage[right as usize]);
+            storage[parent as usize] = DynNode {
+                bv: l.bv.union(&r.bv),
+                parent: NULL,
+                left,
+                right,
+                item: 0,
+                height: 1 + l.height.max(r.height),
+                generation: storage[parent as usize].generation,
+            };
+            storage[left as usize].parent = parent;
+            storage[right as usize].parent = parent;
+            parent
+        }
+        let root = build(storage, &mut scratch[..found], &mut free);
+        storage[root as usize].parent = NULL;
+        (root, free)
+    }
 }
 
 /// Exercise 40: `(best cost, primitives, first entry, cheaper as a leaf)`

@@ -652,4 +652,24 @@ impl Exercises for Student {
         let _ = (tree, tris, p, distance);
         todo!("exercise 47")
     }
+
+    fn rebuild_dynamic(
+        &self,
+        storage: &mut [DynNode<Aabb>],
+        root: u32,
+        free: u32,
+        scratch: &mut [u32],
+    ) -> (u32, u32) {
+        // Hint: walk from the root with a stack: a leaf (`left == NULL`)
+        // goes into `scratch`; an internal node pushes its two children and
+        // is released (`node.released(free)`, then it is the new head).
+        // Then build recursively over the leaves in `scratch`: for two or
+        // more, the box of their `bv.center()`s, its `extent().max_position()`
+        // as the axis, sort by (coordinate, index), split at `len / 2`,
+        // build both halves, and take the parent from the head of the free
+        // list (its `parent` is the next free node). The root's parent is
+        // `NULL`.
+        let _ = (storage, root, free, scratch);
+        todo!("exercise 48")
+    }
 }

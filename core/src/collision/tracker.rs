@@ -11,7 +11,10 @@
 //! difference is reported as [`PairEvent::Begin`] and [`PairEvent::End`].
 //! When more than a quarter of the objects moved, one [`SelfPairs`] walk
 //! of the whole tree is cheaper than a query per mover, and is used
-//! instead (the same answer).
+//! instead (the same answer). Boxes that left their fat leaves are taken
+//! into the tree at the step, all together: a few are reinserted one by
+//! one; when more than a quarter of the objects left theirs, the nodes
+//! above the leaves are rebuilt at once ([`DynamicTree::rebuild`]).
 //!
 //! A pair is two objects whose current boxes overlap (touching counts),
 //! decided on the boxes given, not on the fat leaves: the same answer as
@@ -41,6 +44,9 @@ pub struct Slot {
     leaf: Option<LeafHandle>,
     /// Whether it moved (or arrived) since the last step.
     moved: bool,
+    /// Whether its box left its fat leaf since the last step: the tree
+    /// learns the new box at the next step.
+    stale: bool,
 }
 
 impl Slot {
@@ -49,6 +55,7 @@ impl Slot {
         bounds: Aabb::EMPTY,
         leaf: None,
         moved: false,
+        stale: false,
     };
 }
 
@@ -115,6 +122,11 @@ pub struct PairTracker<'s> {
     boxes: &'s mut [Aabb],
     moved: &'s mut [u32],
     movers: usize,
+    /// Objects whose box left their fat leaf since the last step.
+    stale: usize,
+    /// Set when a step rebuilt the tree and cleared the movers before it
+    /// could finish: the next step must recheck every pair.
+    recheck_all: bool,
     pairs: &'s mut [(u32, u32)],
     count: usize,
     next: &'s mut [(u32, u32)],
@@ -165,6 +177,8 @@ impl<'s> PairTracker<'s> {
             boxes: storage.boxes,
             moved: storage.moved,
             movers: 0,
+            stale: 0,
+            recheck_all: false,
             pairs: storage.pairs,
             count: 0,
             next: storage.next,
@@ -172,7 +186,9 @@ impl<'s> PairTracker<'s> {
     }
 
     /// The dynamic tree over the objects: every query runs on it, with
-    /// [`boxes`](Self::boxes) as the primitives.
+    /// [`boxes`](Self::boxes) as the primitives. It is the tree of the last
+    /// [`step`](Self::step): a box given since then that left its object's
+    /// fat leaf is taken in at the next step, so query it after a step.
     pub fn tree(&self) -> &DynamicTree<'s, Aabb> {
         &self.tree
     }
@@ -229,9 +245,12 @@ impl<'s> PairTracker<'s> {
         Ok(())
     }
 
-    /// Gives object `id` its new box. A box inside the object's fat leaf
-    /// costs no tree work; either way the object's pairs are rechecked at
-    /// the next step (only if the box changed).
+    /// Gives object `id` its new box; the object's pairs are rechecked at
+    /// the next step (only if the box changed). No tree work here: a box
+    /// inside the object's fat leaf never needs any, and a box that left
+    /// it is taken into the tree at the next step, all at once (see
+    /// [`step`](Self::step)). Errors: an id not present, a bad box (nothing
+    /// changes then).
     pub fn set_bounds(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
         let i = self.slot(id)?;
         let Some(leaf) = self.slots[i].leaf else {
@@ -240,15 +259,10 @@ impl<'s> PairTracker<'s> {
         if self.slots[i].bounds == *bounds {
             return Ok(());
         }
-        let before = self.tree.len();
-        if let Err(e) = self.tree.update(leaf, bounds) {
-            if self.tree.len() < before {
-                // The update could not reinsert the object (see
-                // `DynamicTree::update`): it left the tree, and its pairs
-                // end at the next step.
-                self.drop_object(i);
-            }
-            return Err(e);
+        let fits = self.tree.fits(leaf, bounds)?;
+        if !fits && !self.slots[i].stale {
+            self.slots[i].stale = true;
+            self.stale += 1;
         }
         self.slots[i].bounds = *bounds;
         self.boxes[i] = *bounds;
@@ -256,7 +270,69 @@ impl<'s> PairTracker<'s> {
         Ok(())
     }
 
+    /// Takes every box that left its fat leaf into the tree, before a step
+    /// queries it. A few: each leaf is reinserted where its sibling search
+    /// puts it. More than a quarter of the objects (a scene where most
+    /// things move): their leaves take their new fat boxes and every node
+    /// above the leaves is rebuilt at once ([`DynamicTree::rebuild`]),
+    /// which costs less than that many sibling searches and leaves a
+    /// balanced tree. Errors: a leaf that could not be reinserted (see
+    /// [`DynamicTree::update`]); that object leaves the tree, its pairs end
+    /// at the next step, and the other boxes are still taken in.
+    fn take_in_stale(&mut self) -> Result<(), Error> {
+        if self.stale == 0 {
+            return Ok(());
+        }
+        if self.stale * 4 > self.tree.len() {
+            for &m in &self.moved[..self.movers] {
+                let slot = &mut self.slots[m as usize];
+                if let (true, Some(leaf)) = (slot.stale, slot.leaf) {
+                    // Checked when it was given: cannot fail.
+                    self.tree.refit_leaf_later(leaf, &slot.bounds)?;
+                    slot.stale = false;
+                }
+            }
+            self.stale = 0;
+            // The rebuild needs a scratch entry per object, and the movers'
+            // list is one: every pair is rechecked in this step anyway (most
+            // objects moved), so the list is cleared first, and the flag
+            // makes the next step recheck every pair should this one stop
+            // before it finishes.
+            for &m in &self.moved[..self.movers] {
+                self.slots[m as usize].moved = false;
+            }
+            self.recheck_all = true;
+            self.movers = 0;
+            return self.tree.rebuild(self.moved);
+        }
+        let mut first_error = None;
+        for k in 0..self.movers {
+            let i = self.moved[k] as usize;
+            let slot = self.slots[i];
+            let (true, Some(leaf)) = (slot.stale, slot.leaf) else {
+                continue;
+            };
+            self.slots[i].stale = false;
+            self.stale -= 1;
+            let before = self.tree.len();
+            if let Err(e) = self.tree.update(leaf, &slot.bounds) {
+                if self.tree.len() < before {
+                    // It left the tree: its pairs end at the next step.
+                    self.slots[i].leaf = None;
+                    self.slots[i].bounds = Aabb::EMPTY;
+                    self.boxes[i] = Aabb::EMPTY;
+                }
+                first_error.get_or_insert(e);
+            }
+        }
+        first_error.map_or(Ok(()), Err)
+    }
+
     fn drop_object(&mut self, i: usize) {
+        if self.slots[i].stale {
+            self.slots[i].stale = false;
+            self.stale -= 1;
+        }
         self.slots[i].leaf = None;
         self.slots[i].bounds = Aabb::EMPTY;
         self.boxes[i] = Aabb::EMPTY;
@@ -280,10 +356,13 @@ impl<'s> PairTracker<'s> {
     /// and keeps the new list. Errors: the pair buffers are full (nothing
     /// changes then: the old list and the pending movers stay).
     pub fn step(&mut self, mut f: impl FnMut(PairEvent)) -> Result<StepReport, Error> {
+        // Movers counted before the boxes are taken in: a rebuild clears them.
+        let queried = self.movers;
+        self.take_in_stale()?;
         let cap = self.next.len().min(self.pairs.len());
         let movers = self.movers;
         let moved = |slots: &[Slot], id: u32| slots[id as usize].moved;
-        if movers > self.tree.len() / 4 {
+        if self.recheck_all || movers > self.tree.len() / 4 {
             // Most objects moved: one self query of the whole tree shares
             // the walk from the root that a query per mover would repeat.
             let mut found = 0;
@@ -301,7 +380,7 @@ impl<'s> PairTracker<'s> {
                 });
             }
             self.next[..found].sort_unstable();
-            return Ok(self.finish(movers, found, &mut f));
+            return Ok(self.finish(queried, found, &mut f));
         }
         // The old pairs with no mover in them stay as they are.
         let old = &self.pairs[..self.count];
@@ -356,15 +435,20 @@ impl<'s> PairTracker<'s> {
             w += 1;
             j += 1;
         }
-        Ok(self.finish(movers, found, &mut f))
+        Ok(self.finish(queried, found, &mut f))
     }
 
     /// Reports the difference between the old list and the `found` sorted
     /// pairs in `next` (ends first), makes `next` the list, clears the movers.
-    fn finish(&mut self, movers: usize, found: usize, f: &mut impl FnMut(PairEvent)) -> StepReport {
+    fn finish(
+        &mut self,
+        queried: usize,
+        found: usize,
+        f: &mut impl FnMut(PairEvent),
+    ) -> StepReport {
         let (old, new) = (&self.pairs[..self.count], &self.next[..found]);
         let mut report = StepReport {
-            queried: movers,
+            queried,
             pairs: found,
             ..StepReport::default()
         };
@@ -378,10 +462,11 @@ impl<'s> PairTracker<'s> {
         });
         core::mem::swap(&mut self.pairs, &mut self.next);
         self.count = found;
-        for &m in &self.moved[..movers] {
+        for &m in &self.moved[..self.movers] {
             self.slots[m as usize].moved = false;
         }
         self.movers = 0;
+        self.recheck_all = false;
         report
     }
 }

@@ -53,6 +53,7 @@ mod ex44_crossing_segment;
 mod ex45_penetration;
 mod ex46_handles;
 mod ex47_within;
+mod ex48_rebuild;
 #[cfg(test)]
 mod wrong;
 
@@ -81,7 +82,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 47] = [
+pub const EXERCISES: [(u32, &str); 48] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -144,6 +145,7 @@ pub const EXERCISES: [(u32, &str); 47] = [
     (45, "how deep two boxes or two spheres overlap"),
     (46, "handles that cannot lie: generations on a free list"),
     (47, "within a distance: broad phase, then narrow phase"),
+    (48, "rebuilding a dynamic tree in place: the median split"),
 ];
 
 /// A score for one exercise.
@@ -211,6 +213,7 @@ pub fn checks() -> Vec<Check> {
         ex45_penetration::checks(),
         ex46_handles::checks(),
         ex47_within::checks(),
+        ex48_rebuild::checks(),
     ]
     .concat()
 }
@@ -424,7 +427,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 523/523 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 530/530 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

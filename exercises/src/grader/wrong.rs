@@ -51,6 +51,7 @@ use super::ex44_crossing_segment;
 use super::ex45_penetration;
 use super::ex46_handles;
 use super::ex47_within;
+use super::ex48_rebuild;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -115,6 +116,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (45, ex45_penetration::wrong::COUNT),
         (46, ex46_handles::wrong::COUNT),
         (47, ex47_within::wrong::COUNT),
+        (48, ex48_rebuild::wrong::COUNT),
     ]
 }
 
@@ -384,5 +386,14 @@ impl Exercises for Wrong {
         distance: f32,
     ) -> Vec<u32> {
         ex47_within::wrong::triangles_within(self.k(47), tree, tris, p, distance)
+    }
+    fn rebuild_dynamic(
+        &self,
+        storage: &mut [DynNode<Aabb>],
+        root: u32,
+        free: u32,
+        scratch: &mut [u32],
+    ) -> (u32, u32) {
+        ex48_rebuild::wrong::rebuild_dynamic(self.k(48), storage, root, free, scratch)
     }
 }

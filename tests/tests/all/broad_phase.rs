@@ -17,6 +17,9 @@ enum Op {
     Remove(u32),
     Nudge(u32, Vec3),
     Jump(u32, Vec3),
+    /// Every object present jumps (most of them out of their fat leaves):
+    /// the step rebuilds the tree instead of reinserting one by one.
+    Scatter(u32),
     Step,
 }
 
@@ -27,6 +30,7 @@ fn op() -> impl Strategy<Value = Op> {
         1 => (0u32..40).prop_map(Op::Remove),
         4 => (0u32..40, v(0.05)).prop_map(|(i, d)| Op::Nudge(i, d)),
         2 => (0u32..40, v(6.0)).prop_map(|(i, o)| Op::Jump(i, o)),
+        1 => any::<u32>().prop_map(Op::Scatter),
         3 => Just(Op::Step),
     ]
 }
@@ -84,6 +88,19 @@ fn run(ops: &[Op], margin: f32, pair_room: usize, origin: Vec3) -> Result<(), Te
                 };
                 world.set_bounds(i, &moved).unwrap();
                 present[i as usize] = Some(moved);
+            }
+            Op::Scatter(seed) => {
+                for (i, slot) in present.iter_mut().enumerate() {
+                    let Some(b) = *slot else { continue };
+                    // A spot in [-6, 6)^3 from the seed and the id.
+                    let h = (seed as u64 ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15))
+                        .wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                    let spot = |k: u32| ((h >> (k * 16)) & 0xffff) as f32 / 65536.0 * 12.0 - 6.0;
+                    let o = Vec3::new(spot(0), spot(1), spot(2)) + origin;
+                    let moved = Aabb::new(o, o + b.extent());
+                    world.set_bounds(i as u32, &moved).unwrap();
+                    *slot = Some(moved);
+                }
             }
             Op::Step => {
                 let want = reference(&present);

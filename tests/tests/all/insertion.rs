@@ -18,6 +18,8 @@ enum Op {
     Insert(Vec3, Vec3),
     Remove(usize),
     Move(usize, Vec3),
+    /// Every node above the leaves made anew (`DynamicTree::rebuild`).
+    Rebuild,
 }
 
 fn op() -> impl Strategy<Value = Op> {
@@ -28,6 +30,7 @@ fn op() -> impl Strategy<Value = Op> {
         5 => (v(), (0.0f32..2.0, 0.0f32..2.0, 0.0f32..2.0)).prop_map(|(o, (x, y, z))| Op::Insert(o, Vec3::new(x, y, z))),
         2 => (0usize..1000).prop_map(Op::Remove),
         3 => (0usize..1000, v()).prop_map(|(i, d)| Op::Move(i, d * 0.1)),
+        1 => Just(Op::Rebuild),
     ]
 }
 
@@ -92,6 +95,21 @@ fn run<B: BoundingVolume>(
                     Ok(_) => live[k].2 = b,
                     Err(e) => return Err(TestCaseError::fail(format!("update: {e}"))),
                 }
+            }
+            Op::Rebuild => {
+                let height = tree.height();
+                // Too little scratch: refused, nothing changes.
+                if !live.is_empty() {
+                    let mut short = vec![0u32; live.len() - 1];
+                    prop_assert!(tree.rebuild(&mut short).is_err());
+                    prop_assert_eq!(tree.height(), height);
+                }
+                let mut scratch = vec![0u32; live.len()];
+                tree.rebuild(&mut scratch).unwrap();
+                // Balanced: the median split gives ceil(log2 n) levels.
+                let n = live.len().max(1);
+                let levels = (usize::BITS - (n - 1).leading_zeros()) as usize;
+                prop_assert_eq!(tree.height(), levels);
             }
             _ => {}
         }
