@@ -309,6 +309,8 @@ impl<B: BoundingVolume> OwnedBvh<B> {
 ///
 /// Implement only for such types: [`zeroed`] hands out their values without
 /// writing them.
+// SAFETY: only declares the contract above; each `unsafe impl` below
+// states why its type keeps it.
 #[allow(unsafe_code)]
 unsafe trait ZeroBits {}
 
