@@ -350,11 +350,15 @@ impl<'s> PairTracker<'s> {
         Ok(())
     }
 
-    /// Brings the pair list up to date: queries the tree with the box of
-    /// every object that moved, arrived or left since the last step, calls
-    /// `f` with each change (ends first, then begins, each group sorted),
-    /// and keeps the new list. Errors: the pair buffers are full (nothing
-    /// changes then: the old list and the pending movers stay).
+    /// Brings the pair list up to date: first takes into the tree every box
+    /// that left its fat leaf (see [`set_bounds`](Self::set_bounds)), then
+    /// queries the tree with the box of every object that moved, arrived or
+    /// left since the last step, calls `f` with each change (ends first,
+    /// then begins, each group sorted), and keeps the new list. Errors: the
+    /// pair buffers are full (the pair list does not change then, and the
+    /// next step rechecks every pair it would have); a leaf that could not
+    /// be reinserted (see [`DynamicTree::update`]: that object leaves the
+    /// tree and its pairs end at the next step).
     pub fn step(&mut self, mut f: impl FnMut(PairEvent)) -> Result<StepReport, Error> {
         // Movers counted before the boxes are taken in: a rebuild clears them.
         let queried = self.movers;
