@@ -284,23 +284,22 @@ impl<'s> PairTracker<'s> {
             return Ok(());
         }
         if self.stale * 4 > self.tree.len() {
+            // The rebuild needs a scratch entry per object, and the movers'
+            // list is one: every pair is rechecked in this step anyway (most
+            // objects moved), so the list is emptied on the way (each leaf
+            // that left its fat box takes the new one), and the flag makes
+            // the next step recheck every pair should this one stop before
+            // it finishes.
             for &m in &self.moved[..self.movers] {
                 let slot = &mut self.slots[m as usize];
                 if let (true, Some(leaf)) = (slot.stale, slot.leaf) {
                     // Checked when it was given: cannot fail.
                     self.tree.refit_leaf_later(leaf, &slot.bounds)?;
-                    slot.stale = false;
                 }
+                slot.stale = false;
+                slot.moved = false;
             }
             self.stale = 0;
-            // The rebuild needs a scratch entry per object, and the movers'
-            // list is one: every pair is rechecked in this step anyway (most
-            // objects moved), so the list is cleared first, and the flag
-            // makes the next step recheck every pair should this one stop
-            // before it finishes.
-            for &m in &self.moved[..self.movers] {
-                self.slots[m as usize].moved = false;
-            }
             self.recheck_all = true;
             self.movers = 0;
             return self.tree.rebuild(self.moved);
