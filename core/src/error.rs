@@ -143,6 +143,15 @@ pub enum Error {
     InvalidQuery(&'static str),
     /// A tree failed a structural check (see [`Bvh::validate`](crate::Bvh::validate)).
     InvalidTree(&'static str),
+    /// Bytes given as a baked tree ([`Bvh::from_baked`](crate::Bvh::from_baked))
+    /// are not one: `what` says which field or check failed, `offset` is the
+    /// byte where the problem was found.
+    BadBake {
+        /// Byte offset into the given bytes.
+        offset: usize,
+        /// What was expected there.
+        what: &'static str,
+    },
 }
 
 impl Error {
@@ -168,9 +177,10 @@ impl Error {
             Error::VertexIndexOutOfRange { .. } => "a triangle names a vertex that does not exist",
             Error::ScratchCapacity { .. } => "scratch buffer too small",
             Error::StaleHandle { .. } => "the handle names no live leaf of this tree",
-            Error::InvalidConfig(what) | Error::InvalidQuery(what) | Error::InvalidTree(what) => {
-                what
-            }
+            Error::InvalidConfig(what)
+            | Error::InvalidQuery(what)
+            | Error::InvalidTree(what)
+            | Error::BadBake { what, .. } => what,
         }
     }
 }
@@ -240,6 +250,9 @@ impl fmt::Display for Error {
             Error::InvalidConfig(what) => write!(f, "invalid configuration: {what}"),
             Error::InvalidQuery(what) => write!(f, "invalid query: {what}"),
             Error::InvalidTree(what) => write!(f, "invalid tree: {what}"),
+            Error::BadBake { offset, what } => {
+                write!(f, "not a baked tree: {what} (at byte {offset})")
+            }
         }
     }
 }
@@ -316,6 +329,10 @@ mod tests {
             Error::InvalidConfig("bad config"),
             Error::InvalidQuery("bad query"),
             Error::InvalidTree("bad tree"),
+            Error::BadBake {
+                offset: 0,
+                what: "bad bake",
+            },
         ];
         for (i, a) in all.iter().enumerate() {
             assert!(a.as_str().len() > 5, "{a:?}");

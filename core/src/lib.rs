@@ -53,6 +53,7 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+pub mod baked;
 pub mod builders;
 pub mod bv;
 pub mod collision;

@@ -10,7 +10,7 @@
 //! entries.
 
 pub(crate) mod hierarchy;
-mod validate;
+pub(crate) mod validate;
 
 pub use hierarchy::{Boxes4, Content, Hierarchy, Kids, MAX_CHILDREN};
 
@@ -301,7 +301,6 @@ impl<'a, B: BoundingVolume> Bvh<'a, B> {
     /// so that a view costs nothing per query. The caller guarantees
     /// everything [`from_raw_parts_with_bounds`](Self::from_raw_parts_with_bounds)
     /// trusts, and `leaf_bounds` empty or one per index.
-    #[cfg(feature = "alloc")]
     pub(crate) fn from_kept(
         nodes: &'a [Node<B>],
         indices: &'a [u32],

@@ -13,7 +13,7 @@ fn test_and_set(seen: &mut [u32], i: usize) -> bool {
 }
 
 /// Structural checks; returns the depth. Needs `seen` of `Bvh::seen_words` words.
-pub(super) fn structure<B: BoundingVolume>(
+pub(crate) fn structure<B: BoundingVolume>(
     nodes: &[Node<B>],
     indices: &[u32],
     prim_count: usize,

@@ -9,10 +9,13 @@
 #![no_std]
 #![no_main]
 // The baseline build (no feature) leaves the scene and the clock unused.
-#![cfg_attr(not(any(feature = "minimal", feature = "boxes")), allow(dead_code))]
+#![cfg_attr(
+    not(any(feature = "minimal", feature = "boxes", feature = "baked")),
+    allow(dead_code)
+)]
 
 // The boxes set uses only the moving boxes of the scene.
-#[cfg_attr(not(feature = "minimal"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "minimal", feature = "baked")), allow(dead_code))]
 mod scene;
 
 use core::ptr::addr_of_mut;
@@ -172,19 +175,21 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     }
 }
 
-#[cfg(not(any(feature = "minimal", feature = "boxes")))]
+#[cfg(not(any(feature = "minimal", feature = "boxes", feature = "baked")))]
 fn run(_clock: &Clock) -> bool {
     hprintln!("baseline: no bvhkit work");
     true
 }
 
-#[cfg(any(feature = "minimal", feature = "boxes"))]
+#[cfg(any(feature = "minimal", feature = "boxes", feature = "baked"))]
 #[inline(never)]
 fn run(clock: &Clock) -> bool {
     #[cfg(feature = "minimal")]
     let done = demo(clock);
     #[cfg(all(feature = "boxes", not(feature = "minimal")))]
     let done = boxes::run(clock);
+    #[cfg(all(feature = "baked", not(any(feature = "minimal", feature = "boxes"))))]
+    let done = baked::run(clock);
     match done {
         Ok(()) => true,
         Err(e) => {
@@ -198,7 +203,7 @@ fn run(clock: &Clock) -> bool {
 /// table shows what each way costs: the fixed sentence by default (no
 /// formatting code), `Display` or `Debug` with `print-display` or
 /// `print-debug`.
-#[cfg(any(feature = "minimal", feature = "boxes"))]
+#[cfg(any(feature = "minimal", feature = "boxes", feature = "baked"))]
 #[inline(never)]
 fn print_error(e: bvhkit::Error) {
     #[cfg(feature = "print-debug")]
@@ -221,7 +226,7 @@ fn print_error(e: bvhkit::Error) {
 
 /// Times a pair query (`query` reports each pair to its callback), then
 /// prints `kind label count digest`.
-#[cfg(feature = "minimal")]
+#[cfg(any(feature = "minimal", feature = "baked"))]
 fn pairs(
     clock: &Clock,
     kind: &str,
@@ -237,12 +242,12 @@ fn pairs(
 }
 
 /// Times the scene's rays on `tree` over object A, then prints each hit.
-#[cfg(feature = "minimal")]
+#[cfg(any(feature = "minimal", feature = "baked"))]
 fn rays<H: bvhkit::Hierarchy>(
     clock: &Clock,
     label: &str,
     tree: &H,
-    tris: &[Triangle],
+    tris: &[bvhkit::Triangle],
     order: bvhkit::RayOrder,
 ) -> Result<(), bvhkit::Error> {
     use bvhkit::Query;
@@ -308,6 +313,8 @@ fn demo(clock: &Clock) -> Result<(), bvhkit::Error> {
     Ok(())
 }
 
+#[cfg(feature = "baked")]
+mod baked;
 #[cfg(feature = "boxes")]
 mod boxes;
 #[cfg(feature = "everything")]

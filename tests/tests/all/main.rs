@@ -8,6 +8,7 @@
 
 mod advisor;
 mod bad_input;
+mod baked;
 mod bottom_up;
 mod broad_phase;
 mod contact;
