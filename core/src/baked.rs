@@ -303,16 +303,15 @@ impl<'a> Bvh<'a, Aabb> {
         let nodes: &[Node<Aabb>] = cast(&bytes[nodes_at..indices_at], nodes_at)?;
         let indices: &[u32] = cast(&bytes[indices_at..bounds_at], indices_at)?;
         let bounds: &[Aabb] = cast(&bytes[bounds_at..], bounds_at)?;
-        let depth = validate::structure(nodes, indices, h.primitives, seen)?;
-        if depth != h.depth {
+        let depth = check(nodes, indices, bounds, seen)?;
+        if depth != h.depth as usize {
             return Err(bad(20, "the depth field differs from the tree's depth"));
         }
-        check_boxes(nodes, bounds)?;
         Ok(Bvh::from_kept(
             nodes,
             indices,
             bounds,
-            depth as usize,
+            depth,
             indices.len(),
             BuildReport::default(),
         ))
@@ -325,6 +324,44 @@ impl<'a> Bvh<'a, Aabb> {
         let h = Header::read(bytes)?;
         Ok(Bvh::<Aabb>::seen_words(h.nodes, h.primitives))
     }
+}
+
+/// The checks [`Bvh::from_baked`] makes once the bytes are read as arrays,
+/// for parts from anywhere (a file format of your own, a network):
+/// `nodes` from the root at 0, the index array, and either no kept bounds
+/// or one per index entry. Every node reached exactly once from the root,
+/// with its children after it; every index entry in exactly one leaf and
+/// every primitive in exactly one entry; every box finite, not inverted,
+/// containing its children's boxes and its leaf's kept bounds; depth at
+/// most [`MAX_DEPTH`](crate::tree::MAX_DEPTH). Returns the depth. `seen`
+/// is scratch of [`Bvh::seen_words`] words.
+///
+/// ```
+/// use bvhkit::{baked, Aabb, Node};
+/// use glam::Vec3;
+/// let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+/// let leaf = |first| Node { bv: b, first, count: 1 };
+/// let root = Node { bv: b, first: 1, count: 0 };
+/// let mut seen = [0u32; 1];
+/// assert_eq!(baked::check(&[root, leaf(0), leaf(1)], &[1, 0], &[], &mut seen), Ok(1));
+/// // Both leaves on entry 0: primitive 0 twice over, primitive 1 never.
+/// assert!(baked::check(&[root, leaf(0), leaf(0)], &[1, 0], &[], &mut seen).is_err());
+/// ```
+pub fn check(
+    nodes: &[Node<Aabb>],
+    indices: &[u32],
+    kept: &[Aabb],
+    seen: &mut [u32],
+) -> Result<usize, Error> {
+    if !kept.is_empty() && kept.len() != indices.len() {
+        return Err(Error::PrimitiveCountMismatch {
+            tree: indices.len(),
+            given: kept.len(),
+        });
+    }
+    let depth = validate::structure(nodes, indices, indices.len(), seen)?;
+    check_boxes(nodes, kept)?;
+    Ok(depth as usize)
 }
 
 /// Finite on every axis and not inverted: a box a baked node may hold.

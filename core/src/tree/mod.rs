@@ -598,4 +598,39 @@ mod tests {
             ))
         );
     }
+
+    /// Two leaves naming the same index entries, so that others are in no
+    /// leaf: the slot count still adds up and every primitive is in the
+    /// index array once, but a query would never reach the primitives left
+    /// out. Refused.
+    #[test]
+    fn leaves_sharing_index_entries_are_refused() {
+        let t = [
+            Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y),
+            Triangle::new(Vec3::ONE, Vec3::ONE + Vec3::X, Vec3::ONE + Vec3::Y),
+        ];
+        let all = Aabb::new(Vec3::ZERO, Vec3::splat(2.0));
+        let leaf = |first| Node {
+            bv: all,
+            first,
+            count: 1,
+        };
+        let nodes = [
+            Node {
+                bv: all,
+                first: 1,
+                count: 0,
+            },
+            leaf(0),
+            leaf(0),
+        ];
+        let mut seen = [0u32; 1];
+        assert_eq!(
+            Bvh::from_parts(&nodes, &[0, 1], &t, &mut seen).err(),
+            Some(Error::InvalidTree("two leaves share an index entry"))
+        );
+        // With the second leaf on entry 1 it is a valid tree.
+        let nodes = [nodes[0], leaf(0), leaf(1)];
+        assert!(Bvh::from_parts(&nodes, &[0, 1], &t, &mut seen).is_ok());
+    }
 }

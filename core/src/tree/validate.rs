@@ -54,8 +54,10 @@ pub(crate) fn structure<B: BoundingVolume>(
         let node = &nodes[i as usize];
         match node.children() {
             None => {
-                let end = node.first as usize + node.count as usize;
-                if end > indices.len() {
+                // In u64: on a 32-bit target `first + count` from a file
+                // could wrap and pass.
+                let end = u64::from(node.first) + u64::from(node.count);
+                if end > indices.len() as u64 {
                     return Err(Error::InvalidTree("leaf range outside the index array"));
                 }
                 leaf_slots += node.count as usize;
@@ -88,6 +90,18 @@ pub(crate) fn structure<B: BoundingVolume>(
         return Err(Error::InvalidTree(
             "leaves do not cover the index array exactly",
         ));
+    }
+    // Each index entry in exactly one leaf: with the slot count equal to the
+    // array's length, no entry twice means every entry once. (Two leaves on
+    // the same entries would leave others in no leaf, never queried.)
+    seen.fill(0);
+    for node in nodes.iter().filter(|n| n.is_leaf()) {
+        // `first + count` is within the array (checked in the walk).
+        for entry in node.first as usize..node.first as usize + node.count as usize {
+            if test_and_set(seen, entry) {
+                return Err(Error::InvalidTree("two leaves share an index entry"));
+            }
+        }
     }
     // Each primitive exactly once.
     seen.fill(0);
