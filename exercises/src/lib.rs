@@ -771,6 +771,32 @@ pub trait Exercises {
         free: u32,
         scratch: &mut [u32],
     ) -> (u32, u32);
+
+    /// Exercise 49: may parts read from a baked tree's bytes be trusted, as
+    /// [`baked::check`](bvhkit::baked::check) decides? `nodes` has the root
+    /// at 0; a node with `count == 0` is internal, its children at `first`
+    /// and `first + 1`; a leaf (`count > 0`) holds the index entries
+    /// `first .. first + count`. `kept` is empty or holds one box per index
+    /// entry (the primitive's bounds). Return the depth (edges from the
+    /// root to the deepest leaf) when all of these hold, `None` otherwise:
+    /// - no nodes is the empty tree (depth 0), valid only with no index
+    ///   entries and no kept boxes;
+    /// - every child's index is greater than its parent's and inside
+    ///   `nodes`, every node is reached exactly once from the root, and the
+    ///   depth is at most 64;
+    /// - every leaf's range lies inside the index array, and every index
+    ///   entry is in exactly one leaf;
+    /// - every value in the index array is below its length, and none
+    ///   appears twice;
+    /// - every node's box is finite and not inverted (`min <= max` on each
+    ///   axis), and an internal node's box contains both children's
+    ///   ([`Aabb::contains`](bvhkit::BoundingVolume::contains));
+    /// - every kept box, if any, is finite, not inverted and inside its
+    ///   leaf's box.
+    ///
+    /// The grader gives corrupted trees of every kind, cycles included:
+    /// never panic, never loop for ever.
+    fn baked_depth(&self, nodes: &[Node<Aabb>], indices: &[u32], kept: &[Aabb]) -> Option<usize>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -54,6 +54,7 @@ mod ex45_penetration;
 mod ex46_handles;
 mod ex47_within;
 mod ex48_rebuild;
+mod ex49_baked;
 #[cfg(test)]
 mod wrong;
 
@@ -82,7 +83,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 48] = [
+pub const EXERCISES: [(u32, &str); 49] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -146,6 +147,10 @@ pub const EXERCISES: [(u32, &str); 48] = [
     (46, "handles that cannot lie: generations on a free list"),
     (47, "within a distance: broad phase, then narrow phase"),
     (48, "rebuilding a dynamic tree in place: the median split"),
+    (
+        49,
+        "opening a baked tree: what to check before trusting bytes",
+    ),
 ];
 
 /// A score for one exercise.
@@ -214,6 +219,7 @@ pub fn checks() -> Vec<Check> {
         ex46_handles::checks(),
         ex47_within::checks(),
         ex48_rebuild::checks(),
+        ex49_baked::checks(),
     ]
     .concat()
 }
@@ -427,7 +433,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 530/530 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 540/540 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -52,6 +52,7 @@ use super::ex45_penetration;
 use super::ex46_handles;
 use super::ex47_within;
 use super::ex48_rebuild;
+use super::ex49_baked;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -117,6 +118,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (46, ex46_handles::wrong::COUNT),
         (47, ex47_within::wrong::COUNT),
         (48, ex48_rebuild::wrong::COUNT),
+        (49, ex49_baked::wrong::COUNT),
     ]
 }
 
@@ -395,5 +397,8 @@ impl Exercises for Wrong {
         scratch: &mut [u32],
     ) -> (u32, u32) {
         ex48_rebuild::wrong::rebuild_dynamic(self.k(48), storage, root, free, scratch)
+    }
+    fn baked_depth(&self, nodes: &[Node<Aabb>], indices: &[u32], kept: &[Aabb]) -> Option<usize> {
+        ex49_baked::wrong::baked_depth(self.k(49), nodes, indices, kept)
     }
 }
