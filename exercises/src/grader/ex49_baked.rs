@@ -448,8 +448,9 @@ pub mod wrong {
         if which != 3 {
             let mut entry = vec![false; indices.len()];
             for n in nodes.iter().filter(|n| n.is_leaf()) {
-                for e in n.first as usize..(n.first + n.count) as usize {
-                    if std::mem::replace(&mut entry[e], true) {
+                let range = n.first as usize..(n.first + n.count) as usize;
+                for slot in &mut entry[range] {
+                    if std::mem::replace(slot, true) {
                         return None;
                     }
                 }
@@ -457,9 +458,7 @@ pub mod wrong {
         }
         let mut prim = vec![false; indices.len()];
         for &p in indices {
-            let Some(slot) = prim.get_mut(p as usize) else {
-                return None;
-            };
+            let slot = prim.get_mut(p as usize)?;
             if std::mem::replace(slot, true) && which != 4 {
                 return None;
             }
