@@ -232,6 +232,13 @@ impl<'a> Bvh<'a, Aabb> {
     /// # Ok::<(), bvhkit::Error>(())
     /// ```
     pub fn bake(&self, out: &mut [u8]) -> Result<usize, Error> {
+        // The format names primitives 0..p, each once (as every builder
+        // numbers them); a tree naming ids with gaps would not open again.
+        if self.index_bound() != self.indices().len() {
+            return Err(Error::InvalidTree(
+                "only trees over primitives 0..n bake (this one names ids with gaps)",
+            ));
+        }
         let len = self.baked_len();
         if out.len() < len {
             return Err(Error::ScratchCapacity {
@@ -466,6 +473,40 @@ mod tests {
             assert_eq!(tree.bake(&mut again).unwrap(), len);
             assert_eq!(again[..len], buf.0[..len]);
         }
+    }
+
+    /// A tree whose leaves name ids with gaps (as a dynamic tree's can)
+    /// would not open again: refused when baking, nothing written.
+    #[test]
+    fn trees_with_id_gaps_do_not_bake() {
+        let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
+        let nodes = [
+            Node {
+                bv: b,
+                first: 1,
+                count: 0,
+            },
+            Node {
+                bv: b,
+                first: 0,
+                count: 1,
+            },
+            Node {
+                bv: b,
+                first: 1,
+                count: 1,
+            },
+        ];
+        let tree = Bvh::from_raw_parts(&nodes, &[0, 5], 1);
+        let mut out = [9u8; 256];
+        assert!(matches!(tree.bake(&mut out), Err(Error::InvalidTree(_))));
+        assert!(out.iter().all(|&x| x == 9));
+        let dense = Bvh::from_raw_parts(&nodes, &[1, 0], 1);
+        let len = dense.bake(&mut out).unwrap();
+        assert!(
+            Bvh::from_baked(&out[..len], &mut [0u32; 1]).is_ok()
+                || (out.as_ptr() as usize) % 4 != 0
+        );
     }
 
     #[test]
