@@ -234,6 +234,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Build a mesh's tree (the default builder) and bake it into a file a
+    /// firmware can `include_bytes!` and open in place with
+    /// `Bvh::from_baked` (see `bvhkit::baked` for the format). The file is
+    /// opened and validated against the mesh again before this exits 0.
+    Bake {
+        /// Mesh file (.obj, .stl, .ply or .off); default: the built-in rock.
+        mesh: Option<PathBuf>,
+        /// The file to write.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Also store each triangle's box in leaf order (24 bytes a
+        /// triangle): pair queries then never read a triangle to test it.
+        #[arg(long)]
+        leaf_bounds: bool,
+    },
     /// Draw the book's figures (SVG, computed by the library itself) into
     /// the book's figures folder, or check the committed ones against what
     /// the code draws now.
@@ -313,6 +328,32 @@ fn print_json<T: serde::Serialize>(value: &T) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Bake {
+            mesh,
+            out,
+            leaf_bounds,
+        } => {
+            let tris = match &mesh {
+                Some(p) => match bvhkit_std::mesh::load(p) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                },
+                None => bvhkit_std::scene::rock(6, 1),
+            };
+            match bake(&tris, &out, leaf_bounds) {
+                Ok(text) => {
+                    print!("{text}");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
         Command::Figures { book_src, check } => {
             use bvhkit_std::figures;
             let dir = book_src.join("figures");
@@ -836,4 +877,37 @@ fn spinner(message: &str) -> indicatif::ProgressBar {
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar.set_message(message.to_string());
     bar
+}
+
+/// `bvhkit bake`: builds, bakes, writes, reads the file back and opens it
+/// as a device would; returns the report.
+fn bake(tris: &[bvhkit::Triangle], out: &std::path::Path, kept: bool) -> Result<String, String> {
+    use bvhkit::{Aabb, Bvh, TopDown};
+    let owned = bvhkit_std::OwnedBvh::<Aabb>::build(&TopDown::default(), tris)
+        .map_err(|e| e.to_string())?;
+    let tree = if kept {
+        owned.view()
+    } else {
+        owned.plain_view()
+    };
+    let mut bytes = vec![0u8; tree.baked_len()];
+    tree.bake(&mut bytes).map_err(|e| e.to_string())?;
+    std::fs::write(out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    let back = std::fs::read(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let words = Bvh::baked_seen_words(&back).map_err(|e| e.to_string())?;
+    let mut seen = vec![0u32; words];
+    let opened =
+        Bvh::from_baked(&back, &mut seen).map_err(|e| format!("{}: {e}", out.display()))?;
+    opened
+        .validate(tris, &mut seen)
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(format!(
+        "triangles {}\nnodes {}\ndepth {}\nbytes {}\nbytes per triangle {:.1}\nwritten {} (opened and validated again)\n",
+        tris.len(),
+        opened.node_count(),
+        opened.depth(),
+        back.len(),
+        back.len() as f64 / tris.len().max(1) as f64,
+        out.display()
+    ))
 }
