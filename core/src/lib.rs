@@ -96,7 +96,8 @@ pub use query::{
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};
 pub use tree::{
-    max_nodes, max_nodes_for_leaves, Boxes4, Bvh, Content, Hierarchy, Kids, Node, Shape, MAX_DEPTH,
+    max_nodes, max_nodes_for_leaves, Boxes4, Bvh, Capacity, Content, Hierarchy, Kids, Node, Shape,
+    MAX_DEPTH,
 };
 
 pub use glam;

@@ -146,7 +146,7 @@ impl BottomUp {
     /// Scratch lengths for `n` primitives: `(clusters, work, keys)` =
     /// `(2n - 1, 2n, 2n)`. In bytes: `(2n - 1) * (size_of::<B>() + 8) + 8n + 16n`.
     pub const fn scratch_len(n: usize) -> (usize, usize, usize) {
-        (crate::max_nodes(n), 2 * n, 2 * n)
+        crate::Capacity::for_primitives(n).bottom_up
     }
 
     /// Whether [`build`](Self::build) needs [`BottomUpScratch::clusters`]

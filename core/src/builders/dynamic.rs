@@ -1217,7 +1217,7 @@ impl Insertion {
     /// assert_eq!((STORAGE, Insertion::scratch_len(64).1), (127, 64));
     /// ```
     pub const fn scratch_len(n: usize) -> (usize, usize) {
-        (crate::max_nodes(n), n)
+        crate::Capacity::for_primitives(n).insertion
     }
 
     /// Builds: `storage` needs `2n - 1` nodes, `order` `n` words, `nodes`

@@ -188,13 +188,7 @@ impl<'a> QuantizedWide<'a> {
     /// assert_eq!(QuantizedWide::max_records(256), 255);
     /// ```
     pub const fn max_records(n: usize) -> usize {
-        if n > 2 {
-            n - 1
-        } else if n == 2 {
-            2
-        } else {
-            1
-        }
+        crate::Capacity::for_primitives(n).quantized_records
     }
 
     /// Subtrees of at most this many primitives that

@@ -104,13 +104,7 @@ impl<'a> Wide<'a> {
     /// assert_eq!(Wide::max_records(256), 255);
     /// ```
     pub const fn max_records(n: usize) -> usize {
-        if n > 2 {
-            n - 1
-        } else if n == 2 {
-            2
-        } else {
-            1
-        }
+        crate::Capacity::for_primitives(n).wide_records
     }
 
     /// Records the collapse of `bvh` needs.

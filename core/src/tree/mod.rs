@@ -9,9 +9,11 @@
 //! leaf has at most `2n - 1` nodes ([`max_nodes`]) and its index array holds `n`
 //! entries.
 
+mod capacity;
 pub(crate) mod hierarchy;
 pub(crate) mod validate;
 
+pub use capacity::Capacity;
 pub use hierarchy::{Boxes4, Content, Hierarchy, Kids, MAX_CHILDREN};
 
 use crate::builders::BuildReport;

@@ -115,6 +115,53 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(proptest_config(32))]
+
+    /// Every buffer sized by one `Capacity::for_primitives(n)` and nothing
+    /// else: each builder, layout, check and bake fits in it.
+    #[test]
+    fn one_capacity_sizes_every_buffer(prims in scene(60), leaf in 1u32..5) {
+        let n = prims.len();
+        let cap = bvhkit::Capacity::for_primitives(n);
+        prop_assert_eq!(cap.primitives, n);
+        let mut nodes = vec![Node::<Aabb>::ZERO; cap.nodes];
+        let mut idx = vec![0u32; cap.indices];
+        let mut sweep_idx = vec![0u32; cap.sweep_indices];
+        let sweep = TopDown { split: SplitPoint::Sweep, ..TopDown::default() };
+        sweep.build(&prims, &mut nodes, &mut sweep_idx)?;
+        let (c, w, k) = cap.bottom_up;
+        let mut clusters = vec![Cluster::<Aabb>::EMPTY; c];
+        let (mut work, mut keys) = (vec![0u32; w], vec![0u64; k]);
+        let mut scratch = BottomUpScratch { clusters: &mut clusters, work: &mut work, keys: &mut keys };
+        BottomUp::default().build(&prims, &mut nodes, &mut idx, &mut scratch)?;
+        let (s, o) = cap.insertion;
+        let (mut storage, mut order) = (vec![DynNode::<Aabb>::EMPTY; s], vec![0u32; o]);
+        Insertion::default().build(&prims, &mut storage, &mut order, &mut nodes, &mut idx)?;
+        let mut dynamic = vec![DynNode::<Aabb>::EMPTY; cap.dynamic_nodes];
+        let mut tree = bvhkit::builders::DynamicTree::new(&mut dynamic, Default::default())?;
+        for (i, t) in prims.iter().enumerate() {
+            tree.insert(i as u32, &bvhkit::Primitive::bounds(t))?;
+        }
+
+        let mut kept = vec![Aabb::ZERO; cap.leaf_bounds];
+        let t = TopDown::default().with_max_leaf_size(leaf).build(&prims, &mut nodes, &mut idx)?;
+        let mut wide = vec![bvhkit::layout::WideNode::ZERO; cap.wide_records];
+        Wide::from_bvh(&t, &mut wide)?;
+        let mut quant = vec![bvhkit::layout::QuantNode::ZERO; cap.quantized_records];
+        QuantizedWide::from_bvh(&t, &mut quant)?;
+        let mut pre = vec![bvhkit::layout::PreNode::<Aabb, u32>::EMPTY; cap.nodes];
+        bvhkit::layout::Preorder::from_bvh(&t, &mut pre)?;
+        let mut seen = vec![0u32; cap.validate_words];
+        t.validate(&prims, &mut seen)?;
+        let mut baked = vec![0u8; cap.baked_bytes];
+        t.bake(&mut baked)?;
+        let t = t.with_leaf_bounds(&prims, &mut kept)?;
+        let mut baked = vec![0u8; cap.baked_bytes_with_bounds];
+        t.bake(&mut baked)?;
+    }
+}
+
 #[test]
 fn pair_stack_bound_of_binary_trees_is_both_depths_plus_the_smaller() {
     for da in 0..70 {
