@@ -81,7 +81,10 @@ pub struct Aligned<T: ?Sized>(pub T);
 /// ```
 pub const fn baked_len(nodes: usize, primitives: usize, leaf_bounds: bool) -> usize {
     let per_primitive = if leaf_bounds { 4 + BOX_BYTES } else { 4 };
-    HEADER_BYTES + nodes * NODE_BYTES + primitives * per_primitive
+    // Saturating, like every sizing function: no count makes it panic.
+    HEADER_BYTES
+        .saturating_add(nodes.saturating_mul(NODE_BYTES))
+        .saturating_add(primitives.saturating_mul(per_primitive))
 }
 
 /// The header fields, checked against the length of the bytes.

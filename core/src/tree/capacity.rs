@@ -94,9 +94,9 @@ impl Capacity {
             primitives: n,
             nodes,
             indices: n,
-            sweep_indices: 2 * n,
+            sweep_indices: n.saturating_mul(2),
             leaf_bounds: n,
-            bottom_up: (nodes, 2 * n, 2 * n),
+            bottom_up: (nodes, n.saturating_mul(2), n.saturating_mul(2)),
             insertion: (nodes, n),
             dynamic_nodes: nodes,
             wide_records: four_wide,
@@ -111,6 +111,20 @@ impl Capacity {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Sizes past memory saturate instead of overflowing: no `n` makes a
+    /// sizing function panic (an allocation of `usize::MAX` then fails
+    /// where it is asked for, with its own error).
+    #[test]
+    fn huge_counts_saturate() {
+        for n in [usize::MAX, usize::MAX / 2 + 1, usize::MAX / 32] {
+            let c = Capacity::for_primitives(n);
+            assert!(c.nodes >= n.min(usize::MAX / 2));
+            assert_eq!(c.sweep_indices, n.saturating_mul(2));
+            assert_eq!(c.baked_bytes_with_bounds, usize::MAX);
+            assert!(crate::max_nodes_for_leaves(n) >= n.min(usize::MAX / 2));
+        }
+    }
 
     /// Each sizing function of a builder or layout reads its field, and
     /// the fields are the documented formulas.

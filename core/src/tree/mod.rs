@@ -40,7 +40,9 @@ pub const fn max_nodes(n: usize) -> usize {
     if n == 0 {
         0
     } else {
-        2 * n - 1
+        // Saturating: past `MAX_PRIMITIVES` no build accepts the input
+        // anyway, and a sizing function must not panic.
+        n.saturating_mul(2) - 1
     }
 }
 
@@ -82,7 +84,7 @@ pub const fn max_nodes_for_leaves(leaves: usize) -> usize {
     if leaves == 0 {
         0
     } else {
-        2 * leaves - 1
+        leaves.saturating_mul(2) - 1
     }
 }
 
