@@ -3,7 +3,7 @@
 //! near-touching (adversarial) pairs and on random pairs. The disagreement
 //! rates are printed before timing (they do not change from run to run).
 //!
-//! Run: `cargo bench -p bvhkit-std --bench narrow`
+//! Run: `cargo bench -p bvhkit-std --features cli --bench narrow`
 
 use bvhkit::narrow::{triangles_intersect_with, ExactSigns, F32Signs, F64Signs, Orientation};
 use bvhkit::Triangle;

@@ -7,8 +7,8 @@
 //! layout (canonical, implicit, preorder 32-bit, tri-node, 4-wide, quantized
 //! 4-wide), each answer checked against the canonical tree's first.
 //!
-//! Run: `cargo bench -p bvhkit-std --bench report` (about fifteen minutes),
-//! or filter, e.g. `cargo bench -p bvhkit-std --bench report -- layout`.
+//! Run: `cargo bench -p bvhkit-std --features cli --bench report` (about fifteen minutes),
+//! or filter, e.g. `cargo bench -p bvhkit-std --features cli --bench report -- layout`.
 
 use bvhkit::builders::{BottomUp, Method, PRESETS};
 use bvhkit::glam::Vec3;

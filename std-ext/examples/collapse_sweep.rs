@@ -3,7 +3,7 @@
 //! shifted by 1% of its box, as the peer benchmark runs it) and closest-hit
 //! rays, for PLOC and insertion trees with each collapse, beside the default
 //! top-down tree. Medians; every answer checked equal to the top-down
-//! tree's. `cargo run --release -p bvhkit-std --example collapse_sweep --
+//! tree's. `cargo run --release -p bvhkit-std --features cli --example collapse_sweep --
 //! [--runs N] [MESH...]` (the mesh defaults to the armadillo of
 //! `scripts/fetch-meshes`; a mesh that does not load is replaced by the
 //! built-in rock). `scripts/book-measure collapse` records it for the book.

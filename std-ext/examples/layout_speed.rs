@@ -1,7 +1,7 @@
 //! Quick timing of the pair query and ray casts per layout and leaf size
 //! (medians), for tuning. The measured report is `bvhkit layouts`.
 //!
-//! Run: `cargo run --release -p bvhkit-std --example layout_speed`
+//! Run: `cargo run --release -p bvhkit-std --features cli --example layout_speed`
 
 use bvhkit::layout::{PreNode, Preorder, Wide, WideNode};
 use bvhkit::{Aabb, Descent, Hierarchy, Pairs, Query, RayOrder, TopDown, Triangle};

@@ -1,6 +1,6 @@
 //! Closest-hit rays on a mesh, as the peer benchmark casts them (random rays
 //! into the mesh's box), on the default tree and its 4-wide layout (medians;
-//! also a loop for profilers): `cargo run --release -p bvhkit-std --example
+//! also a loop for profilers): `cargo run --release -p bvhkit-std --features cli --example
 //! profile_rays -- [MESH] [RUNS] [RAYS]` (the mesh defaults to the
 //! armadillo that `scripts/fetch-meshes` gets).
 use bvhkit::layout::{Wide, WideNode};

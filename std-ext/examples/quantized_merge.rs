@@ -5,7 +5,7 @@
 //! default builder, no kept leaf bounds). Every limit must give the same
 //! answers. Rounds alternate the limits; the second round is printed.
 //!
-//! Run: `MERGES=0,8 cargo run --release -p bvhkit-std --example quantized_merge -- data/meshes/*.off`
+//! Run: `MERGES=0,8 cargo run --release -p bvhkit-std --features cli --example quantized_merge -- data/meshes/*.off`
 use bvhkit::glam::Vec3;
 use bvhkit::layout::{QuantNode, QuantizedWide};
 use bvhkit::{Aabb, Hierarchy, Pairs, Primitive, Query, RayOrder, TopDown, Triangle};

@@ -1,30 +1,81 @@
 //! # bvhkit-std
 //!
-//! The std side of bvhkit: owned storage for trees ([`OwnedBvh`]), the built-in
-//! scenes ([`scene`]), timing helpers, and the `tour` behind the `bvhkit`
-//! command-line tool. The core crate never allocates; this crate is where
-//! `Vec`s, files and clocks live.
+//! The std side of bvhkit. The core crate never allocates; this crate is
+//! where `Vec`s, files, threads and clocks live:
+//!
+//! - [`mesh`]: OBJ, STL, PLY and OFF files into triangles, every error naming
+//!   the file and the line (or byte);
+//! - [`OwnedBvh`] (the core's owned tree) and [`ParallelBuild`], the same tree
+//!   built on every core, bit for bit;
+//! - [`scene`]: the built-in scenes (a rock, a scene of mixed objects);
+//! - [`TrackerBuffers`]: heap storage for the core's incremental broad phase.
+//!
+//! ## Features
+//!
+//! | feature | default | adds | brings in |
+//! |---|---|---|---|
+//! | `obj`, `stl`, `ply` | on | that mesh format ([`mesh`]; OFF needs nothing) | `tobj`, `stl_io`, `ply-rs` |
+//! | `parallel` | on | [`ParallelBuild`], `parallel` | `rayon` |
+//! | `cli` | off | the `bvhkit` command-line tool and its reports (tour, stats, collide, advise, cost model, bench report, the book's figures) | `clap`, `serde`, `serde_json`, `indicatif`, `plotters`, `quickhull`, `time` |
+//!
+//! A program that loads meshes depends on the defaults and compiles none of
+//! the tool's dependencies. The tool: `cargo install bvhkit-std --features cli`,
+//! or in this repository `cargo run --release -p bvhkit-std --features cli --bin bvhkit -- tour`.
+//!
+//! ```
+//! use bvhkit::{Aabb, TopDown};
+//! use bvhkit_std::OwnedBvh;
+//! # let dir = std::env::temp_dir().join("bvhkit-std-lib-doc");
+//! # std::fs::create_dir_all(&dir).unwrap();
+//! # let path = dir.join("quad.off");
+//! # std::fs::write(&path, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n").unwrap();
+//! let triangles = bvhkit_std::mesh::load(&path)?; // a quad: two triangles
+//! let tree = OwnedBvh::<Aabb>::build(&TopDown::default(), &triangles)?;
+//! assert_eq!(tree.view().indices().len(), 2);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
+#[cfg(feature = "cli")]
 pub mod advisor;
+#[cfg(feature = "cli")]
 pub mod builders;
+#[cfg(feature = "cli")]
 pub mod collide;
+#[cfg(feature = "cli")]
 pub mod cost;
+#[cfg(feature = "cli")]
 pub mod cost_fit;
+#[cfg(feature = "cli")]
 pub mod figures;
+#[cfg(feature = "cli")]
 pub mod hull;
+#[cfg(feature = "cli")]
 pub mod layouts;
 pub mod mesh;
+#[cfg(feature = "cli")]
 pub mod motion;
+#[cfg(feature = "cli")]
 pub mod near_misses;
+#[cfg(feature = "parallel")]
 pub mod parallel;
+#[cfg(feature = "cli")]
 pub mod report;
 pub mod scene;
+#[cfg(feature = "cli")]
 pub mod stamp;
+#[cfg(feature = "cli")]
 pub mod stats;
+#[cfg(feature = "cli")]
 pub mod tour;
+#[cfg(feature = "cli")]
 pub mod volumes;
 
-use bvhkit::{Aabb, BoundingVolume, Error, Primitive, TopDown};
+use bvhkit::Aabb;
+
+// The README's snippet compiles (`cargo test --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeSnippet;
 use std::time::{Duration, Instant};
 
 /// The core's owned tree (its `alloc` feature), re-exported where desktop
@@ -45,13 +96,21 @@ pub use bvhkit::OwnedBvh;
 /// assert_eq!(parallel.view().indices(), sequential.view().indices());
 /// # Ok::<(), bvhkit::Error>(())
 /// ```
+#[cfg(feature = "parallel")]
 pub trait ParallelBuild: Sized {
     /// Builds with `builder` on rayon's pool.
-    fn build_parallel<P: Primitive + Sync>(builder: &TopDown, prims: &[P]) -> Result<Self, Error>;
+    fn build_parallel<P: bvhkit::Primitive + Sync>(
+        builder: &bvhkit::TopDown,
+        prims: &[P],
+    ) -> Result<Self, bvhkit::Error>;
 }
 
-impl<B: BoundingVolume + Send + Sync> ParallelBuild for OwnedBvh<B> {
-    fn build_parallel<P: Primitive + Sync>(builder: &TopDown, prims: &[P]) -> Result<Self, Error> {
+#[cfg(feature = "parallel")]
+impl<B: bvhkit::BoundingVolume + Send + Sync> ParallelBuild for OwnedBvh<B> {
+    fn build_parallel<P: bvhkit::Primitive + Sync>(
+        builder: &bvhkit::TopDown,
+        prims: &[P],
+    ) -> Result<Self, bvhkit::Error> {
         OwnedBvh::build_forked(builder, prims, &parallel::Threads::default())
     }
 }

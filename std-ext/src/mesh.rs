@@ -1,11 +1,13 @@
 //! Loading triangle meshes from files.
 //!
-//! | format | how |
-//! |---|---|
-//! | Wavefront OBJ | the `tobj` crate, after a line-numbered check of every `v` and `f` line (faces of fewer than 3 vertices, bad or out-of-range indices, negative indices counted back) |
-//! | STL, ASCII and binary | the `stl_io` crate; a binary file's size must match its triangle count; a bad vertex is named by its line (ASCII) or the byte where it starts (binary) |
-//! | PLY, ASCII and binary | the `ply-rs` crate; its errors are reduced to one line (the line, or the byte where binary data ends); a bad vertex or face is named by its line (ASCII) or the byte where its record starts (binary, found from the header's types and the list lengths before it) |
-//! | OFF, with the `[ST][C][N]OFF` variants (colours, normals, texture coordinates; per-face colours) | by hand (a small text format no maintained crate reads) |
+//! | format | feature (default on) | how |
+//! |---|---|---|
+//! | Wavefront OBJ | `obj` | the `tobj` crate, after a line-numbered check of every `v` and `f` line (faces of fewer than 3 vertices, bad or out-of-range indices, negative indices counted back) |
+//! | STL, ASCII and binary | `stl` | the `stl_io` crate; a binary file's size must match its triangle count; a bad vertex is named by its line (ASCII) or the byte where it starts (binary) |
+//! | PLY, ASCII and binary | `ply` | the `ply-rs` crate; its errors are reduced to one line (the line, or the byte where binary data ends); a bad vertex or face is named by its line (ASCII) or the byte where its record starts (binary, found from the header's types and the list lengths before it) |
+//! | OFF, with the `[ST][C][N]OFF` variants (colours, normals, texture coordinates; per-face colours) | always | by hand (a small text format no maintained crate reads) |
+//!
+//! A file of a format whose feature is off is an error saying so.
 //!
 //! Polygons are triangulated as fans. Every error names the file and the
 //! line (text) or byte offset (binary data) where one is known; indices are checked against the vertex count,
@@ -67,14 +69,24 @@ pub fn load_indexed(path: &Path) -> Result<IndexedMesh, MeshError> {
         .map(str::to_ascii_lowercase)
         .as_deref()
     {
+        #[cfg(feature = "obj")]
         Some("obj") => load_obj(path, &fail)?,
+        #[cfg(feature = "stl")]
         Some("stl") => {
             let triangles = load_stl(path, &fail)?;
             let corners = weld(&triangles);
             IndexedMesh { triangles, corners }
         }
+        #[cfg(feature = "ply")]
         Some("ply") => load_ply(path, &fail)?,
         Some("off") => load_off(path, &fail)?,
+        // A format compiled out is named as such, not as unknown.
+        #[cfg(not(feature = "obj"))]
+        Some("obj") => return Err(fail(left_out("obj"))),
+        #[cfg(not(feature = "stl"))]
+        Some("stl") => return Err(fail(left_out("stl"))),
+        #[cfg(not(feature = "ply"))]
+        Some("ply") => return Err(fail(left_out("ply"))),
         _ => {
             return Err(fail(
                 "unsupported format (bvhkit reads .obj, .stl, .ply and .off)".into(),
@@ -84,6 +96,12 @@ pub fn load_indexed(path: &Path) -> Result<IndexedMesh, MeshError> {
     // A file with no faces is a valid, empty mesh: it builds the empty tree.
     debug_assert_eq!(mesh.triangles.len(), mesh.corners.len());
     Ok(mesh)
+}
+
+/// The error for a format whose feature this build left out.
+#[cfg(not(all(feature = "obj", feature = "stl", feature = "ply")))]
+fn left_out(format: &str) -> String {
+    format!(".{format} files need bvhkit-std's `{format}` feature, which this build left out")
 }
 
 /// Corner indices by position: corners with the same coordinates (bit for
@@ -192,6 +210,7 @@ fn finite(v: Vec3, at: impl Fn() -> String, fail: Fail<'_>) -> Result<Vec3, Mesh
 
 /// The 1-based line of the `nth` (0-based) line of `text` whose first word
 /// is `word` (an ASCII STL's `vertex` or `facet` lines).
+#[cfg(feature = "stl")]
 fn line_of_nth(text: &[u8], word: &[u8], nth: usize) -> Option<usize> {
     text.split(|&b| b == b'\n')
         .enumerate()
@@ -232,6 +251,7 @@ fn fan(
     Ok(())
 }
 
+#[cfg(feature = "stl")]
 fn load_stl(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
     let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
     // A binary STL is an 80-byte header, a u32 count and 50 bytes per
@@ -296,6 +316,7 @@ fn load_stl(path: &Path, fail: Fail<'_>) -> Result<Vec<Triangle>, MeshError> {
 /// debug output ("Line 12: Couln't read element line.\n\tString: '...'\n\t
 /// Error: Custom { .. }"): the line and the text found, or for binary data
 /// the byte where it ended.
+#[cfg(feature = "ply")]
 fn ply_error(text: &str, size: u64) -> String {
     let first = text.lines().next().unwrap_or("").trim();
     if let Some(rest) = first.strip_prefix("Line ") {
@@ -326,6 +347,7 @@ fn ply_error(text: &str, size: u64) -> String {
 /// long for 64 bits (it panicked; found by fuzzing), and element counts
 /// that the bytes after the header cannot hold (each element takes at least
 /// one byte), which would have it read or reserve for data that is not there.
+#[cfg(feature = "ply")]
 fn check_ply_header(bytes: &[u8], fail: Fail<'_>) -> Result<(), MeshError> {
     let mut offset = 0usize;
     let mut announced: Vec<(usize, String, u64)> = Vec::new();
@@ -372,6 +394,7 @@ fn check_ply_header(bytes: &[u8], fail: Fail<'_>) -> Result<(), MeshError> {
 /// Where a PLY record is, for an error: the line of an ASCII record (one
 /// per line after the header), the byte offset of a binary one, walked from
 /// the header's property types with each list's length read from the data.
+#[cfg(feature = "ply")]
 struct PlyPlaces<'a> {
     bytes: &'a [u8],
     header: &'a ply_rs::ply::Header,
@@ -381,6 +404,7 @@ struct PlyPlaces<'a> {
     header_lines: usize,
 }
 
+#[cfg(feature = "ply")]
 impl<'a> PlyPlaces<'a> {
     fn new(bytes: &'a [u8], header: &'a ply_rs::ply::Header) -> Self {
         let (mut data_start, mut header_lines) = (0, 0);
@@ -481,6 +505,7 @@ impl<'a> PlyPlaces<'a> {
     }
 }
 
+#[cfg(feature = "ply")]
 fn load_ply(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     use ply_rs::ply::Property;
     let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
@@ -653,6 +678,7 @@ fn load_off(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
 /// (`i`, `i/t`, `i//n`, `i/t/n`) needs an index that exists, counting
 /// negative indices back from the last vertex read. Other statements are
 /// left to tobj.
+#[cfg(feature = "obj")]
 fn check_obj(text: &str, fail: Fail<'_>) -> Result<(), MeshError> {
     let mut vertices = 0usize;
     for (n, line) in text.lines().enumerate() {
@@ -710,6 +736,7 @@ fn check_obj(text: &str, fail: Fail<'_>) -> Result<(), MeshError> {
     Ok(())
 }
 
+#[cfg(feature = "obj")]
 fn load_obj(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     let text = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
     check_obj(&String::from_utf8_lossy(&text), fail)?;
@@ -759,7 +786,7 @@ fn load_obj(path: &Path, fail: Fail<'_>) -> Result<IndexedMesh, MeshError> {
     Ok(out)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "obj", feature = "stl", feature = "ply"))]
 mod tests {
     use super::*;
 
@@ -1158,5 +1185,35 @@ mod tests {
         }
         assert!(load(Path::new("/no/such/file.obj")).is_err());
         assert!(load(&write("mesh.xyz", "")).is_err());
+    }
+}
+
+/// Runs in every feature set (CI runs it with none): a format compiled out
+/// is refused with the feature's name, and OFF always loads.
+#[cfg(test)]
+mod feature_tests {
+    use super::*;
+
+    #[test]
+    fn formats_left_out_name_their_feature_and_off_always_loads() {
+        let dir = std::env::temp_dir().join(format!("bvhkit-mesh-features-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let off = dir.join("t.off");
+        std::fs::write(&off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+        assert_eq!(load(&off).unwrap().len(), 1);
+        for (ext, on) in [
+            ("obj", cfg!(feature = "obj")),
+            ("stl", cfg!(feature = "stl")),
+            ("ply", cfg!(feature = "ply")),
+        ] {
+            let path = dir.join(format!("t.{ext}"));
+            // Broken in every format (a face with no vertices behind it).
+            std::fs::write(&path, "f 1 2 3\n").unwrap();
+            let err = load(&path).unwrap_err();
+            assert_eq!(err.path, path);
+            let names_feature = err.reason.contains(&format!("`{ext}` feature"));
+            assert_eq!(names_feature, !on, "{ext}: {}", err.reason);
+        }
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -178,7 +178,7 @@ fn icosphere(subdivisions: u32) -> (Vec<Vec3>, Vec<[usize; 3]>) {
     (v, f)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "cli"))]
 mod tests {
     use super::*;
 
