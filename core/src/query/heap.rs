@@ -1,67 +1,59 @@
-//! A fixed-capacity min-heap for best-first traversals.
+//! The fixed-capacity min-queue for best-first traversals.
+
+use core::cmp::Ordering;
+use heapless::binary_heap::{BinaryHeap, Min};
 
 /// Entries the best-first queue holds before it falls back to depth-first.
 pub const BEST_FIRST_QUEUE: usize = 64;
 
-/// Binary min-heap of `(key, node)` on an array: no allocation. `push`
-/// refuses (returns `false`) when full, and the traversal then handles the
-/// node depth-first instead, so nothing is dropped.
+/// A queued node and its key, ordered by key (`f64::total_cmp`, so the order
+/// is total even for keys no traversal produces, such as NaN), then by node.
+#[derive(Clone, Copy, Debug)]
+struct Entry(f64, u32);
+
+impl PartialEq for Entry {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Entry {}
+
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
+    }
+}
+
+/// Min-queue of `(key, node)` on [`heapless::BinaryHeap`]: no allocation.
+/// `push` refuses (returns `false`) when full, and the traversal then handles
+/// the node depth-first instead, so nothing is dropped.
 #[derive(Debug)]
 pub(crate) struct MinHeap<const N: usize> {
-    items: [(f64, u32); N],
-    len: usize,
+    items: BinaryHeap<Entry, Min, N>,
 }
 
 impl<const N: usize> MinHeap<N> {
     pub(crate) const fn new() -> Self {
         MinHeap {
-            items: [(0.0, 0); N],
-            len: 0,
+            items: BinaryHeap::new(),
         }
     }
 
+    #[inline]
     pub(crate) fn push(&mut self, key: f64, node: u32) -> bool {
-        if self.len == N {
-            return false;
-        }
-        let mut i = self.len;
-        self.items[i] = (key, node);
-        self.len += 1;
-        while i > 0 {
-            let parent = (i - 1) / 2;
-            if self.items[parent].0 <= self.items[i].0 {
-                break;
-            }
-            self.items.swap(parent, i);
-            i = parent;
-        }
-        true
+        self.items.push(Entry(key, node)).is_ok()
     }
 
+    #[inline]
     pub(crate) fn pop(&mut self) -> Option<(f64, u32)> {
-        if self.len == 0 {
-            return None;
-        }
-        let top = self.items[0];
-        self.len -= 1;
-        self.items[0] = self.items[self.len];
-        let mut i = 0;
-        loop {
-            let (l, r) = (2 * i + 1, 2 * i + 2);
-            let mut m = i;
-            if l < self.len && self.items[l].0 < self.items[m].0 {
-                m = l;
-            }
-            if r < self.len && self.items[r].0 < self.items[m].0 {
-                m = r;
-            }
-            if m == i {
-                break;
-            }
-            self.items.swap(i, m);
-            i = m;
-        }
-        Some(top)
+        self.items.pop().map(|Entry(key, node)| (key, node))
     }
 }
 

@@ -2,52 +2,45 @@
 
 use crate::Error;
 
-/// A stack on an array of `N` entries. A push beyond `N` is an
-/// [`Error::StackOverflow`] naming the tree's depth, never a panic.
+/// A stack of at most `N` entries on [`heapless::Vec`]. A push beyond `N` is
+/// an [`Error::StackOverflow`] naming the tree's depth, never a panic.
 #[derive(Debug)]
 pub(crate) struct Stack<T, const N: usize> {
-    items: [T; N],
-    len: usize,
+    items: heapless::Vec<T, N>,
     depth: usize,
 }
 
-impl<T: Copy + Default, const N: usize> Stack<T, N> {
+impl<T: Copy, const N: usize> Stack<T, N> {
     /// A stack holding `first`, for a tree of `depth` (reported on overflow).
     #[inline(always)] // built in the caller's frame, not copied into it
     pub(crate) fn with(first: T, depth: usize) -> Self {
-        // Filled with zeros (one block clear), not with copies of `first`
-        // (one store per entry): a query on a small tree pays this per call.
-        let mut items = [T::default(); N];
-        items[0] = first;
-        Stack {
-            items,
-            len: 1,
-            depth,
-        }
+        // heapless leaves the unused entries uninitialised: a query on a small
+        // tree pays nothing for the capacity it does not use.
+        const { assert!(N > 0, "a traversal stack holds at least the root") };
+        let mut items = heapless::Vec::new();
+        let _ = items.push(first); // room: N > 0, checked above
+
+        Stack { items, depth }
     }
 
     /// Empties the stack and pushes `first` (reuse without re-initialising).
     #[inline]
     pub(crate) fn reset(&mut self, first: T) {
-        self.items[0] = first;
-        self.len = 1;
+        self.items.clear();
+        let _ = self.items.push(first);
     }
 
     #[inline]
     pub(crate) fn push(&mut self, item: T) -> Result<(), Error> {
-        let slot = self.items.get_mut(self.len).ok_or(Error::StackOverflow {
+        self.items.push(item).map_err(|_| Error::StackOverflow {
             depth: self.depth,
             capacity: N,
-        })?;
-        *slot = item;
-        self.len += 1;
-        Ok(())
+        })
     }
 
     #[inline]
     pub(crate) fn pop(&mut self) -> Option<T> {
-        self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
+        self.items.pop()
     }
 }
 

@@ -224,6 +224,14 @@ fn print_error(e: bvhkit::Error) {
     hprintln!("error {}", e.as_str());
 }
 
+/// Pairs a query hands over at a time: they collect in a fixed `heapless`
+/// buffer that is drained whenever it fills (as firmware forwarding contacts
+/// in batches would), so a query reports any number of pairs in 64 bytes.
+/// (32 pairs cost every step about 200 bytes more stack, since the demo's
+/// frame holds the batch: measured with `scripts/book-measure embedded`.)
+#[cfg(any(feature = "minimal", feature = "baked"))]
+const PAIR_BATCH: usize = 8;
+
 /// Times a pair query (`query` reports each pair to its callback), then
 /// prints `kind label count digest`.
 #[cfg(any(feature = "minimal", feature = "baked"))]
@@ -233,10 +241,23 @@ fn pairs(
     label: &str,
     query: impl FnOnce(&mut dyn FnMut(u32, u32)) -> Result<usize, bvhkit::Error>,
 ) -> Result<(), bvhkit::Error> {
-    let mut digest = 0u32;
+    type Batch = heapless::Vec<(u32, u32), PAIR_BATCH>;
+    fn drain(batch: &mut Batch, digest: &mut u32) {
+        for &(i, j) in batch.iter() {
+            *digest = digest.wrapping_add(scene::mix(i, j));
+        }
+        batch.clear();
+    }
+    let (mut batch, mut digest) = (Batch::new(), 0u32);
     let count = clock.time(label, || {
-        query(&mut |i, j| digest = digest.wrapping_add(scene::mix(i, j)))
+        query(&mut |i, j| {
+            if batch.is_full() {
+                drain(&mut batch, &mut digest);
+            }
+            let _ = batch.push((i, j)); // room: drained just above when full
+        })
     })?;
+    drain(&mut batch, &mut digest);
     hprintln!("{} {} {} {:08x}", kind, label, count, digest);
     Ok(())
 }
@@ -251,12 +272,12 @@ fn rays<H: bvhkit::Hierarchy>(
     order: bvhkit::RayOrder,
 ) -> Result<(), bvhkit::Error> {
     use bvhkit::Query;
-    let mut hits = [None; scene::RAYS];
+    let mut hits = heapless::Vec::<Option<bvhkit::Hit>, { scene::RAYS }>::new();
     clock.time(label, || -> Result<(), bvhkit::Error> {
-        for (r, out) in hits.iter_mut().enumerate() {
+        for r in 0..scene::RAYS {
             let (o, d) = scene::ray(r);
             let ray = bvhkit::Ray::new(o, d, f32::INFINITY)?;
-            *out = tree.cast_ray(tris, &ray, order, ())?;
+            let _ = hits.push(tree.cast_ray(tris, &ray, order, ())?); // RAYS rays, room for RAYS
         }
         Ok(())
     })?;
