@@ -58,6 +58,7 @@ pub mod builders;
 pub mod bv;
 pub mod collision;
 mod error;
+mod frame;
 #[cfg(feature = "layouts")]
 pub mod layout;
 #[cfg(feature = "alloc")]
@@ -81,6 +82,7 @@ pub use bv::{Dop14, Dop18, Dop26, ExactKdop, Kdop};
 #[cfg(feature = "obb")]
 pub use bv::{Obb, ObbDito};
 pub use error::Error;
+pub use frame::LocalFrame;
 #[cfg(feature = "alloc")]
 pub use mesh::{Mesh, PointHit, RayHit};
 pub use narrow::Intersects;

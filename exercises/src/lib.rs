@@ -797,6 +797,13 @@ pub trait Exercises {
     /// The grader gives corrupted trees of every kind, cycles included:
     /// never panic, never loop for ever.
     fn baked_depth(&self, nodes: &[Node<Aabb>], indices: &[u32], kept: &[Aabb]) -> Option<usize>;
+
+    /// Exercise 50: the world box `[min, max]` (in `f64`) entered into a
+    /// local frame at `origin`, as [`LocalFrame::aabb`](bvhkit::LocalFrame::aabb)
+    /// does: an `f32` box that contains every point of the world box's
+    /// offsets from `origin`, with each bound the nearest `f32` on the outer
+    /// side (the smallest such box). Every input is finite.
+    fn frame_box(&self, origin: DVec3, min: DVec3, max: DVec3) -> Aabb;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -684,4 +684,14 @@ impl Exercises for Student {
         let _ = (nodes, indices, kept);
         todo!("exercise 49")
     }
+
+    fn frame_box(&self, origin: DVec3, min: DVec3, max: DVec3) -> Aabb {
+        // Hint: subtract in `f64` first (`min - origin`): rounded to `f32`
+        // first, a coordinate 600 km away has already lost its millimetres.
+        // Then round each bound outward: `v as f32` is the nearest `f32`,
+        // which may lie inside; step it with `next_down` / `next_up` only
+        // when it does (compare `f64::from(f)` with `v`).
+        let _ = (origin, min, max);
+        todo!("exercise 50")
+    }
 }

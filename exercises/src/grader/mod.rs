@@ -55,6 +55,7 @@ mod ex46_handles;
 mod ex47_within;
 mod ex48_rebuild;
 mod ex49_baked;
+mod ex50_frame_box;
 #[cfg(test)]
 mod wrong;
 
@@ -83,7 +84,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 49] = [
+pub const EXERCISES: [(u32, &str); 50] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -150,6 +151,10 @@ pub const EXERCISES: [(u32, &str); 49] = [
     (
         49,
         "opening a baked tree: what to check before trusting bytes",
+    ),
+    (
+        50,
+        "entering the world: a box in a local frame, rounded outward",
     ),
 ];
 
@@ -220,6 +225,7 @@ pub fn checks() -> Vec<Check> {
         ex47_within::checks(),
         ex48_rebuild::checks(),
         ex49_baked::checks(),
+        ex50_frame_box::checks(),
     ]
     .concat()
 }
@@ -433,7 +439,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 540/540 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 545/545 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

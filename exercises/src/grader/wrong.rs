@@ -53,6 +53,7 @@ use super::ex46_handles;
 use super::ex47_within;
 use super::ex48_rebuild;
 use super::ex49_baked;
+use super::ex50_frame_box;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -119,6 +120,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (47, ex47_within::wrong::COUNT),
         (48, ex48_rebuild::wrong::COUNT),
         (49, ex49_baked::wrong::COUNT),
+        (50, ex50_frame_box::wrong::COUNT),
     ]
 }
 
@@ -400,5 +402,8 @@ impl Exercises for Wrong {
     }
     fn baked_depth(&self, nodes: &[Node<Aabb>], indices: &[u32], kept: &[Aabb]) -> Option<usize> {
         ex49_baked::wrong::baked_depth(self.k(49), nodes, indices, kept)
+    }
+    fn frame_box(&self, origin: DVec3, min: DVec3, max: DVec3) -> Aabb {
+        ex50_frame_box::wrong::frame_box(self.k(50), origin, min, max)
     }
 }

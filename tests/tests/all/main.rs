@@ -17,6 +17,7 @@ mod distance;
 mod empty;
 mod equivalence;
 mod fits;
+mod frames;
 mod insertion;
 mod kdop_measures;
 mod layouts;
