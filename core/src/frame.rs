@@ -181,6 +181,26 @@ mod tests {
     }
 
     #[test]
+    fn frames_centre_on_their_points_and_triangles_move_with_them() {
+        let f =
+            LocalFrame::around([DVec3::new(0.0, 4.0, -6.0), DVec3::new(2.0, 0.0, 6.0)]).unwrap();
+        assert_eq!(f.origin(), DVec3::new(1.0, 2.0, 0.0));
+        let t = f.triangle([
+            DVec3::new(1.5, 2.0, 0.0),
+            DVec3::new(1.0, 3.0, 0.0),
+            DVec3::new(1.0, 2.0, -0.25),
+        ]);
+        assert_eq!(
+            t.v,
+            [
+                Vec3::new(0.5, 0.0, 0.0),
+                Vec3::Y,
+                Vec3::new(0.0, 0.0, -0.25)
+            ]
+        );
+    }
+
+    #[test]
     fn points_go_back_to_the_world_exactly() {
         let frame = LocalFrame::new(DVec3::new(6.4e6, -1.25e5, 3.0)).unwrap();
         let p = Vec3::new(0.1, -2.5, 1e-3);

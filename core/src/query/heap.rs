@@ -72,4 +72,16 @@ mod tests {
         assert_eq!(order, [0, 1, 2, 3]);
         assert_eq!(h.pop(), None);
     }
+
+    #[test]
+    fn entries_are_equal_exactly_when_their_order_says_so() {
+        // `total_cmp` tells -0.0 from 0.0 and calls NaN equal to itself; `==`
+        // must agree with it, as `Eq` and `Ord` promise.
+        assert_eq!(Entry(0.5, 3), Entry(0.5, 3));
+        assert_ne!(Entry(0.5, 3), Entry(0.5, 4));
+        assert_ne!(Entry(-0.0, 3), Entry(0.0, 3));
+        assert_eq!(Entry(f64::NAN, 3), Entry(f64::NAN, 3));
+        assert!(Entry(0.25, 9) < Entry(0.5, 0));
+        assert!(Entry(0.5, 0) < Entry(0.5, 1));
+    }
 }

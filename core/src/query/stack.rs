@@ -61,4 +61,19 @@ mod tests {
         );
         assert_eq!((s.pop(), s.pop(), s.pop()), (Some(2), Some(1), None));
     }
+
+    #[test]
+    fn reset_leaves_only_the_new_first_entry() {
+        let mut s = Stack::<u32, 4>::with(1, 3);
+        s.push(2).unwrap();
+        s.push(3).unwrap();
+        s.reset(9);
+        assert_eq!((s.pop(), s.pop()), (Some(9), None));
+        // The whole capacity is free again after a reset.
+        s.reset(5);
+        for i in 0..3 {
+            s.push(i).unwrap();
+        }
+        assert!(s.push(4).is_err());
+    }
 }
