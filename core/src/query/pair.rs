@@ -62,6 +62,24 @@ pub const fn pair_stack_bound((ka, da): (usize, usize), (kb, db): (usize, usize)
 
 /// How a two-tree query walks the trees. The answer is the same for every
 /// choice; the work differs.
+///
+/// ```
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::{Aabb, Descent, Node, PairTraversal, Pairs, TopDown};
+/// // Boxes 1.2 wide at 0, 1, 2, ..., points half-way between them.
+/// let a: Vec<Aabb> = (0..20).map(|i| Aabb::new(Vec3::new(i as f32 - 0.6, 0.0, 0.0), Vec3::new(i as f32 + 0.6, 0.0, 0.0))).collect();
+/// let b: Vec<Vec3> = (0..20).map(|i| Vec3::new(i as f32 + 0.5, 0.0, 0.0)).collect();
+/// let (mut na, mut nb) = (vec![Node::<Aabb>::EMPTY; 39], vec![Node::<Aabb>::EMPTY; 39]);
+/// let (mut ia, mut ib) = (vec![0; 20], vec![0; 20]);
+/// let ta = TopDown::default().build(&a, &mut na, &mut ia)?;
+/// let tb = TopDown::default().build(&b, &mut nb, &mut ib)?;
+/// let default = Pairs::new(&ta, &a, &tb, &b).count()?;
+/// let recursive = Pairs::new(&ta, &a, &tb, &b)
+///     .traversal(PairTraversal::Recursive(Descent::Larger))
+///     .count()?;
+/// assert_eq!((default, recursive), (39, 39)); // each point in two boxes, the last in one
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PairTraversal<D = Descent> {
     /// The lectures' generic informed depth-first traversal, written as a
@@ -219,7 +237,22 @@ impl<P: Primitive, Q: Primitive> Answer<P, Q> for Bounds {
 }
 
 /// Report pairs that really touch ([`Intersects`]): bounds first (cheap
-/// reject), then the exact test.
+/// reject), then the exact test. [`Pairs::exact`] chooses it.
+///
+/// ```
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::{Aabb, Node, Pairs, TopDown, Triangle};
+/// // Two triangles whose boxes overlap but which do not touch.
+/// let a = [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)];
+/// let b = [Triangle::new(Vec3::new(0.9, 0.9, -1.0), Vec3::new(0.9, 0.9, 1.0), Vec3::new(1.0, 1.0, 0.0))];
+/// let (mut na, mut nb) = ([Node::<Aabb>::EMPTY; 1], [Node::<Aabb>::EMPTY; 1]);
+/// let (mut ia, mut ib) = ([0u32; 1], [0u32; 1]);
+/// let ta = TopDown::default().build(&a, &mut na, &mut ia)?;
+/// let tb = TopDown::default().build(&b, &mut nb, &mut ib)?;
+/// assert_eq!(Pairs::new(&ta, &a, &tb, &b).count()?, 1); // bounds overlap
+/// assert_eq!(Pairs::new(&ta, &a, &tb, &b).exact().count()?, 0); // no contact
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Exact;
 

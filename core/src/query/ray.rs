@@ -24,6 +24,16 @@ use glam::{DVec3, Vec3, Vec3A};
 /// Made only by [`Ray::new`], which checks it: the fields are private, so a
 /// ray with a NaN or zero direction (which no query could answer
 /// meaningfully) cannot reach a query.
+///
+/// ```
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::{Error, Ray};
+/// let ray = Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0), 10.0)?;
+/// assert_eq!((ray.dir(), ray.t_max()), (Vec3::new(0.0, 0.0, 2.0), 10.0));
+/// assert!(matches!(Ray::new(Vec3::ZERO, Vec3::ZERO, 1.0), Err(Error::InvalidQuery(_))));
+/// assert!(Ray::new(Vec3::NAN, Vec3::X, 1.0).is_err());
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     origin: Vec3,

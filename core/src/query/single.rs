@@ -142,6 +142,23 @@ fn leaf_overlapping<H: Hierarchy + ?Sized, P: Primitive, R: Region>(
 /// The single-tree queries, for every [`Hierarchy`] (the canonical [`Bvh`]
 /// and every [layout](crate::layout)). `Bvh` has the same methods inherently,
 /// so it needs no import.
+///
+/// ```
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::layout::{Wide, WideNode};
+/// use bvhkit::{Aabb, Node, Query, TopDown};
+/// let points: Vec<Vec3> = (0..32).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+/// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(32)];
+/// let mut indices = vec![0; 32];
+/// let tree = TopDown::default().build(&points, &mut nodes, &mut indices)?;
+/// let mut records = vec![WideNode::EMPTY; Wide::records_needed(&tree)?];
+/// let wide = Wide::from_bvh(&tree, &mut records)?;
+/// // The same question, the same answer, on either representation.
+/// let region = Aabb::new(Vec3::new(9.5, -1.0, -1.0), Vec3::new(12.5, 1.0, 1.0));
+/// assert_eq!(Query::overlapping(&wide, &points, &region, |_| {})?, 3);
+/// assert_eq!(tree.overlapping(&points, &region, |_| {})?, 3);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 pub trait Query: Hierarchy {
     /// Calls `f` with every primitive whose bounds overlap `region` (an
     /// [`Aabb`], [`Sphere`] or [`Kdop`]); returns the count. Depth-first with

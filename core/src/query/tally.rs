@@ -80,6 +80,14 @@ impl Tally for Counts {
 ///
 /// `bvhkit-std` calibrates the unit costs on the running machine and compares
 /// the prediction with measured query times.
+///
+/// ```
+/// use bvhkit::{CostModel, Counts};
+/// // Unit costs in nanoseconds; counts from a query's tally.
+/// let model = CostModel { cv: 2.0, cp: 10.0, cu: 0.0, co: 50.0 };
+/// let counts = Counts { bv_tests: 100, prim_tests: 20, updates: 0 };
+/// assert_eq!(model.predict(&counts), 100.0 * 2.0 + 20.0 * 10.0 + 50.0);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CostModel {
     /// Cost of one bounding-volume pair test.

@@ -93,6 +93,24 @@ pub const fn max_nodes_for_leaves(leaves: usize) -> usize {
 /// For an internal node (`count == 0`) the children are `first` and `first + 1`.
 /// For a leaf (`count > 0`) the primitives are `indices[first .. first + count]`.
 /// With an [`Aabb`] the node is 32 bytes.
+///
+/// Storage for a tree is an array of nodes the caller sizes
+/// ([`max_nodes`]); `Node::ZERO` fills a `static` at no
+/// flash cost, `Node::EMPTY` a `Vec`.
+///
+/// ```
+/// use bvhkit::glam::Vec3;
+/// use bvhkit::{max_nodes, Aabb, Node, TopDown};
+/// let points = [Vec3::ZERO, Vec3::X, Vec3::Y];
+/// let mut nodes = [Node::<Aabb>::ZERO; max_nodes(3)];
+/// let mut indices = [0u32; 3];
+/// let tree = TopDown::default().with_max_leaf_size(1).build(&points, &mut nodes, &mut indices)?;
+/// let root = tree.root().unwrap();
+/// assert_eq!((root.count, root.first), (0, 1)); // internal: children at 1 and 2
+/// assert_eq!(root.bv, Aabb::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)));
+/// assert_eq!(core::mem::size_of::<Node<Aabb>>(), 32);
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct Node<B> {
