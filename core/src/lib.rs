@@ -90,10 +90,10 @@ pub use narrow::Intersects;
 pub use owned::OwnedBvh;
 pub use primitive::{Primitive, Triangle, MAX_COORDINATE};
 pub use query::{
-    brute_force, overlapping_pairs, Answer, Bounds, ClosestOnTriangle, Collector, CostModel,
-    Counts, Decision, DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit, Nearest,
-    Open, Order, PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder, RayTarget,
-    Region, Same, Tally, TriangleFeature, TriangleHit,
+    brute_force, overlapping_pairs, Answer, Bounds, CastTarget, ClosestOnTriangle, Collector,
+    CostModel, Counts, Decision, DepthSwitch, Descent, DescentRule, Distance, Exact, Frame, Hit,
+    Nearest, Open, Order, PairTraversal, Pairs, Place, PointDistance, Query, Ray, RayOrder,
+    RayTarget, Region, Same, ShapeCast, Swept, Tally, TriangleFeature, TriangleHit,
 };
 pub use stats::TreeStats;
 pub use transform::{Rigid, Transform};

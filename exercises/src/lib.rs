@@ -804,6 +804,22 @@ pub trait Exercises {
     /// offsets from `origin`, with each bound the nearest `f32` on the outer
     /// side (the smallest such box). Every input is finite.
     fn frame_box(&self, origin: DVec3, min: DVec3, max: DVec3) -> Aabb;
+
+    /// Exercise 51: the time of impact of a ball of `radius` whose centre
+    /// moves along `centre + t * dir` against the triangle `tri`, as
+    /// [`CastTarget::cast_hit`](bvhkit::CastTarget::cast_hit) answers for a
+    /// [`ShapeCast::sphere`](bvhkit::ShapeCast::sphere): the smallest `t` in
+    /// `[0, t_max]` at which the ball touches the triangle (its face, an
+    /// edge or a corner; `0` if it starts touching), or `None`. Every input
+    /// is finite except `t_max`, which may be infinite; `dir` is not zero.
+    fn sphere_cast(
+        &self,
+        tri: &Triangle,
+        centre: Vec3,
+        radius: f32,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<f32>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

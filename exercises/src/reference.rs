@@ -28,6 +28,19 @@ impl Exercises for Reference {
         bvhkit::LocalFrame::new(origin).map_or(Aabb::EMPTY, |f| f.aabb(min, max))
     }
 
+    fn sphere_cast(
+        &self,
+        tri: &Triangle,
+        centre: Vec3,
+        radius: f32,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<f32> {
+        // Every case is a valid cast; one the library refuses gives `None`.
+        let cast = bvhkit::ShapeCast::sphere(centre, radius, dir, t_max).ok()?;
+        bvhkit::CastTarget::cast_hit(tri, &cast)
+    }
+
     fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
         a.overlaps(b)
     }

@@ -694,4 +694,25 @@ impl Exercises for Student {
         let _ = (origin, min, max);
         todo!("exercise 50")
     }
+
+    fn sphere_cast(
+        &self,
+        tri: &Triangle,
+        centre: Vec3,
+        radius: f32,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<f32> {
+        // Hint: the ball touches the triangle when its centre is within
+        // `radius` of it, so follow the centre's ray into the triangle grown
+        // by the ball: a slab of half thickness `radius` over the triangle
+        // (the plane's two offsets, clipped by the three edge planes) and a
+        // capsule around each edge (a cylinder clipped to the edge's length,
+        // and a ball at each end). Each piece gives an interval of `t`
+        // (a quadratic for balls and cylinders); the answer is the earliest
+        // start, clamped to 0, of an interval that reaches `[0, t_max]`.
+        // Work in f64 (`as_dvec3`).
+        let _ = (tri, centre, radius, dir, t_max);
+        todo!("exercise 51")
+    }
 }

@@ -1,10 +1,11 @@
 //! Build with any builder of the library from arbitrary coordinates (NaN,
 //! infinities, subnormals, 1e38, duplicates, or tame values at scales from
-//! 1e-30 to 1e30), then query: an error for bad input, otherwise every
-//! answer equals brute force. Never a panic.
+//! 1e-30 to 1e30), then query (pairs, a region, a ray, a sphere and a box
+//! cast, nearest): an error for bad input, otherwise every answer equals
+//! brute force. Never a panic.
 #![no_main]
 use bvhkit::glam::Vec3;
-use bvhkit::{brute_force, Aabb, Pairs, Ray, RayOrder, Triangle};
+use bvhkit::{brute_force, Aabb, Pairs, Ray, RayOrder, ShapeCast, Triangle};
 use bvhkit_std::builders::catalogue;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
@@ -78,6 +79,31 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
                 got.map(|h| h.t),
                 want.map(|h| h.t),
                 "{name}: ray {ray:?} over {tris:?}: tree {got:?}, brute force {want:?}"
+            );
+        }
+        // A ball and a box swept along the same path, sized by the second
+        // corner's distance (refused when it is not a finite size).
+        let size = q.v[1].distance(q.v[0]);
+        let half = Vec3::splat(size * 0.5);
+        for cast in [
+            ShapeCast::sphere(q.v[0], size, q.v[2] - q.v[0], f32::INFINITY),
+            ShapeCast::aabb(
+                &Aabb::new(q.v[0] - half, q.v[0] + half),
+                q.v[2] - q.v[0],
+                1.0,
+            ),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            let got = t
+                .cast_shape(&tris, &cast, RayOrder::DepthFirst, ())
+                .unwrap();
+            let want = brute_force::cast_closest(&tris, &cast);
+            assert_eq!(
+                got.map(|h| h.t),
+                want.map(|h| h.t),
+                "{name}: cast {cast:?} over {tris:?}: tree {got:?}, brute force {want:?}"
             );
         }
         match t.nearest(&tris, q.v[2], ()) {

@@ -560,3 +560,46 @@ pub fn check_distance<A: Hierarchy, H: Hierarchy, P: PairDistance<Q>, Q: Clone>(
     }
     Ok(compared)
 }
+
+/// Sphere and box casts from `origin` along `dir` (shapes of about `size`)
+/// on any tree, every order and the any-hit variant, against
+/// [`brute_force::cast_closest`]. Returns how many casts hit, so a caller can
+/// check its scenes exercise hits and misses.
+pub fn check_casts<H: bvhkit::Query, P: bvhkit::CastTarget>(
+    h: &H,
+    prims: &[P],
+    origin: Vec3,
+    dir: Vec3,
+    size: f32,
+    t_max: f32,
+    name: &str,
+) -> Result<usize, TestCaseError> {
+    use bvhkit::{RayOrder, ShapeCast};
+    let mut hits = 0;
+    let boxed = Aabb::new(
+        origin - Vec3::new(size, 0.5 * size, 0.25 * size),
+        origin + Vec3::new(0.5 * size, size, 0.75 * size),
+    );
+    for cast in [
+        ShapeCast::sphere(origin, size, dir, t_max),
+        ShapeCast::aabb(&boxed, dir, t_max),
+        ShapeCast::sphere(origin, 0.0, dir, t_max),
+    ] {
+        let cast = cast.map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        let want = brute_force::cast_closest(prims, &cast);
+        hits += usize::from(want.is_some());
+        for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+            let got = h.cast_shape(prims, &cast, order, ()).unwrap();
+            prop_assert_eq!(got, want, "{} {:?} cast {:?}", name, order, cast);
+        }
+        let any = h.shape_hits_any(prims, &cast, ()).unwrap();
+        prop_assert_eq!(any.is_some(), want.is_some(), "{} any {:?}", name, cast);
+        if let Some(a) = any {
+            prop_assert_eq!(
+                bvhkit::CastTarget::cast_hit(&prims[a.prim as usize], &cast),
+                Some(a.t)
+            );
+        }
+    }
+    Ok(hits)
+}

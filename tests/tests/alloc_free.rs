@@ -281,6 +281,16 @@ fn every_other_query<B: BoundingVolume>(
         total += ta.cast_ray(a, &ray, order, ()).unwrap().is_some() as usize;
     }
     total += ta.ray_hits_any(a, &ray, ()).unwrap().is_some() as usize;
+    let start = Aabb::new(ray.origin() - 0.2, ray.origin() + 0.2);
+    for cast in [
+        bvhkit::ShapeCast::sphere(ray.origin(), 0.3, ray.dir(), ray.t_max()).unwrap(),
+        bvhkit::ShapeCast::aabb(&start, ray.dir(), ray.t_max()).unwrap(),
+    ] {
+        for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+            total += ta.cast_shape(a, &cast, order, ()).unwrap().is_some() as usize;
+        }
+        total += ta.shape_hits_any(a, &cast, ()).unwrap().is_some() as usize;
+    }
     total += ta
         .nearest(a, Vec3::new(3.1, 2.2, 9.0), ())
         .unwrap()

@@ -107,6 +107,34 @@ pub fn pairs_placed<P, Q, F: crate::Place<Q>, X: crate::Answer<P, Q>>(
     found
 }
 
+/// The first primitive a shape cast touches over all primitives (smallest
+/// `t`, then smallest index): the reference for
+/// [`Query::cast_shape`](crate::Query::cast_shape).
+///
+/// ```
+/// use bvhkit::{brute_force, ShapeCast};
+/// use glam::Vec3;
+/// let pts = [Vec3::new(4.0, 0.0, 0.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 3.0, 0.0)];
+/// let ball = ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::X, 10.0)?;
+/// let hit = brute_force::cast_closest(&pts, &ball).unwrap();
+/// assert_eq!((hit.prim, hit.t), (1, 1.0));
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+pub fn cast_closest<P: crate::CastTarget>(
+    prims: &[P],
+    cast: &crate::ShapeCast,
+) -> Option<crate::Hit> {
+    let mut best: Option<crate::Hit> = None;
+    for (i, p) in prims.iter().enumerate() {
+        if let Some(t) = p.cast_hit(cast) {
+            if best.is_none_or(|b| t < b.t) {
+                best = Some(crate::Hit { prim: i as u32, t });
+            }
+        }
+    }
+    best
+}
+
 /// The closest ray hit over all primitives (smallest `t`, then smallest index).
 pub fn ray_closest<P: crate::RayTarget>(prims: &[P], ray: &crate::Ray) -> Option<crate::Hit> {
     let mut best: Option<crate::Hit> = None;

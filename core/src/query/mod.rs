@@ -11,6 +11,7 @@
 //! [`MAX_DEPTH`](crate::MAX_DEPTH).
 
 pub mod brute_force;
+mod cast;
 mod collect;
 mod descent;
 mod distance;
@@ -23,6 +24,7 @@ mod single;
 pub(crate) mod stack;
 mod tally;
 
+pub use cast::{CastTarget, ShapeCast, Swept};
 pub use collect::Collector;
 pub use descent::{Decision, DepthSwitch, Descent, DescentRule, Open};
 pub use distance::{Closest, ClosestPoints, Distance, PairDistance};

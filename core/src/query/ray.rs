@@ -394,9 +394,15 @@ fn slab4(b: &Boxes4, ray: &Ray, inv: Vec3) -> [Option<f32>; MAX_CHILDREN] {
 /// and exit instead of to every lane. About half the instructions of the
 /// general test per box, with the same guarantee: a box whose primitive the
 /// `f64` primitive test would hit is never rejected.
+///
+/// A swept shape is the same probe ([`Probe::swept`]): its centre's ray
+/// against every box grown by the shape's half extents (their Minkowski
+/// sum), the growth folded into the per-axis slack.
 #[derive(Clone, Copy, Debug)]
-struct Probe {
+pub(crate) struct Probe<G: Growth = NoGrowth> {
     ray: Ray,
+    /// How much every box grows on each side: nothing for a ray.
+    grow: G,
     inv: Vec3,
     /// Whether the fast test applies (finite `1 / dir` and slack).
     fast: bool,
@@ -416,6 +422,37 @@ const WIDEN: f32 = 4.0e-7;
 /// `f64` primitive test's rounding with a wide margin.
 const PAD: f32 = 1.0 / 1_048_576.0;
 
+/// How a [`Probe`] grows each box before testing it. A ray's probe holds
+/// [`NoGrowth`], which is zero-sized and compiles away: ray queries carry
+/// no code for swept shapes (firmware sizes unchanged).
+pub(crate) trait Growth: Copy + core::fmt::Debug {
+    /// Whether boxes grow at all.
+    const GROWS: bool;
+    /// `b` grown on every side.
+    fn grown(&self, b: &Aabb) -> Aabb;
+}
+
+/// A ray's probe: boxes as they are.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NoGrowth;
+
+impl Growth for NoGrowth {
+    const GROWS: bool = false;
+    #[inline(always)]
+    fn grown(&self, b: &Aabb) -> Aabb {
+        *b
+    }
+}
+
+/// A swept shape's half extents.
+impl Growth for Vec3 {
+    const GROWS: bool = true;
+    #[inline(always)]
+    fn grown(&self, b: &Aabb) -> Aabb {
+        Aabb::new(b.min - *self, b.max + *self)
+    }
+}
+
 impl Probe {
     fn new(ray: &Ray, root: &Aabb) -> Probe {
         let inv = ray.dir.recip();
@@ -423,6 +460,7 @@ impl Probe {
         let inv_a = Vec3A::from(inv);
         let slack = magnitude * (2.0 * PAD) * inv_a.abs();
         Probe {
+            grow: NoGrowth,
             ray: *ray,
             inv,
             fast: inv_a.is_finite() && slack.is_finite(),
@@ -432,12 +470,38 @@ impl Probe {
             t_max: ray.t_max + ray.t_max * WIDEN,
         }
     }
+}
 
+impl Probe<Vec3> {
+    /// The probe of a shape with half extents `grow` (`>= 0`, finite) whose
+    /// centre follows `ray`: each box `b` is tested as `[b.min - grow,
+    /// b.max + grow]`. The pad is sized from the grown root, so it also
+    /// covers the rounding of `grow * |1 / dir|` in the slack.
+    pub(crate) fn swept(ray: &Ray, root: &Aabb, grow: Vec3) -> Probe<Vec3> {
+        let inv = ray.dir.recip();
+        let grown = Aabb::new(root.min - grow, root.max + grow);
+        let magnitude = Vec3A::from(grown.min.abs().max(grown.max.abs()));
+        let inv_a = Vec3A::from(inv);
+        let slack = (magnitude * (2.0 * PAD) + Vec3A::from(grow)) * inv_a.abs();
+        Probe {
+            grow,
+            ray: *ray,
+            inv,
+            fast: inv_a.is_finite() && slack.is_finite(),
+            origin: Vec3A::from(ray.origin),
+            inv_a,
+            slack,
+            t_max: ray.t_max + ray.t_max * WIDEN,
+        }
+    }
+}
+
+impl<G: Growth> Probe<G> {
     /// The entry `t` of the ray into `b`, or `None` when it misses.
     #[inline(always)]
     fn enter(&self, b: &Aabb) -> Option<f32> {
         if !self.fast {
-            return slab(b, &self.ray, self.inv);
+            return slab(&self.grow.grown(b), &self.ray, self.inv);
         }
         let (mn, mx) = (Vec3A::from(b.min), Vec3A::from(b.max));
         let (a, c) = (
@@ -464,6 +528,10 @@ impl Probe {
     fn enter4(&self, b: &Boxes4) -> [Option<f32>; MAX_CHILDREN] {
         use glam::Vec4;
         if !self.fast {
+            if G::GROWS {
+                // A swept shape moving parallel to a slab: box by box.
+                return core::array::from_fn(|k| self.enter(&b.get(k)));
+            }
             return slab4(b, &self.ray, self.inv);
         }
         let (mut near, mut far) = (Vec4::NEG_INFINITY, Vec4::INFINITY);
@@ -491,10 +559,10 @@ impl Probe {
 /// Entry `t` of each child of a node (`None` where the ray misses), four at
 /// once when the layout stores the children's boxes side by side.
 #[inline(always)]
-fn enter_children<H: Hierarchy + ?Sized>(
+fn enter_children<H: Hierarchy + ?Sized, G: Growth>(
     h: &H,
     kids: &Kids,
-    probe: &Probe,
+    probe: &Probe<G>,
 ) -> [Option<f32>; MAX_CHILDREN] {
     if let Some(b) = h.children_boxes(kids) {
         return probe.enter4(b);
@@ -566,22 +634,26 @@ impl<B: BoundingVolume> Bvh<'_, B> {
 
 /// The ray's entry parameter into a node's volume (through its box).
 #[inline(always)]
-fn enter<H: Hierarchy + ?Sized>(h: &H, n: u32, probe: &Probe) -> Option<f32> {
+pub(crate) fn enter<H: Hierarchy + ?Sized, G: Growth>(
+    h: &H,
+    n: u32,
+    probe: &Probe<G>,
+) -> Option<f32> {
     probe.enter(&h.bv(n).aabb())
 }
 
-/// Tests a leaf's primitives, keeping the closest hit in `best`.
-#[inline]
-fn closest_in_leaf<P: RayTarget>(
-    prims: &[P],
+/// Tests a leaf's primitives with `hit` (a primitive's entry `t`, or `None`),
+/// keeping the closest hit in `best`.
+#[inline(always)]
+fn closest_in_leaf(
     here: &[u32],
-    ray: &Ray,
+    hit: &impl Fn(u32) -> Option<f32>,
     best: &mut Option<Hit>,
     tally: &mut impl Tally,
 ) {
     tally.prim_tests(here.len() as u32);
     for &p in here {
-        if let Some(t) = prims[p as usize].ray_hit(ray) {
+        if let Some(t) = hit(p) {
             let h = Hit { prim: p, t };
             if h.before(best) {
                 *best = Some(h);
@@ -596,35 +668,48 @@ pub(crate) fn cast_ray<H: Hierarchy + ?Sized, P: RayTarget>(
     prims: &[P],
     ray: &Ray,
     order: RayOrder,
-    mut tally: impl Tally,
+    tally: impl Tally,
 ) -> Result<Option<Hit>, Error> {
     check_query(h, prims.len())?;
     if h.is_empty() {
         return Ok(None);
     }
     let probe = Probe::new(ray, &h.bv(h.root()).aabb());
+    closest_hit(h, &probe, |p| prims[p as usize].ray_hit(ray), order, tally)
+}
+
+/// Closest hit of a probe whose primitive test is `hit` (a ray's, or a
+/// swept shape's through its centre): the traversal both queries share.
+#[inline(always)]
+pub(crate) fn closest_hit<H: Hierarchy + ?Sized, G: Growth>(
+    h: &H,
+    probe: &Probe<G>,
+    hit: impl Fn(u32) -> Option<f32>,
+    order: RayOrder,
+    mut tally: impl Tally,
+) -> Result<Option<Hit>, Error> {
     tally.bv_tests(1);
-    let Some(t_root) = enter(h, h.root(), &probe) else {
+    let Some(t_root) = enter(h, h.root(), probe) else {
         return Ok(None);
     };
     match order {
         // Each order in its own function, so only its stack is on the call stack.
         RayOrder::DepthFirst if H::ARITY == 2 => {
-            ray_depth_first::<H, P, BINARY_DFS_STACK>(h, prims, &probe, t_root, &mut tally)
+            ray_depth_first::<H, G, _, BINARY_DFS_STACK>(h, &hit, probe, t_root, &mut tally)
         }
         RayOrder::DepthFirst => {
-            ray_depth_first::<H, P, DFS_STACK>(h, prims, &probe, t_root, &mut tally)
+            ray_depth_first::<H, G, _, DFS_STACK>(h, &hit, probe, t_root, &mut tally)
         }
-        RayOrder::BestFirst => ray_best_first(h, prims, &probe, t_root, &mut tally),
+        RayOrder::BestFirst => ray_best_first(h, &hit, probe, t_root, &mut tally),
     }
 }
 
 /// Depth-first closest hit, nearer child first, on a stack of `N` entries.
 #[inline(never)]
-fn ray_depth_first<H: Hierarchy + ?Sized, P: RayTarget, const N: usize>(
+fn ray_depth_first<H: Hierarchy + ?Sized, G: Growth, F: Fn(u32) -> Option<f32>, const N: usize>(
     h: &H,
-    prims: &[P],
-    probe: &Probe,
+    hit: &F,
+    probe: &Probe<G>,
     t_root: f32,
     tally: &mut impl Tally,
 ) -> Result<Option<Hit>, Error> {
@@ -641,7 +726,7 @@ fn ray_depth_first<H: Hierarchy + ?Sized, P: RayTarget, const N: usize>(
         if t <= best_t {
             match h.content(n) {
                 Content::Leaf(here) => {
-                    closest_in_leaf(prims, here, &probe.ray, &mut best, tally);
+                    closest_in_leaf(here, hit, &mut best, tally);
                     best_t = best.map_or(f32::INFINITY, |b| b.t);
                 }
                 Content::Inner(kids) => {
@@ -711,10 +796,10 @@ fn nearest_first<const N: usize>(
 
 /// Best-first closest hit on the fixed queue.
 #[inline(never)]
-fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
+fn ray_best_first<H: Hierarchy + ?Sized, G: Growth>(
     h: &H,
-    prims: &[P],
-    probe: &Probe,
+    hit: &impl Fn(u32) -> Option<f32>,
+    probe: &Probe<G>,
     t_root: f32,
     tally: &mut impl Tally,
 ) -> Result<Option<Hit>, Error> {
@@ -728,7 +813,7 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
             break;
         }
         match h.content(n) {
-            Content::Leaf(here) => closest_in_leaf(prims, here, &probe.ray, &mut best, tally),
+            Content::Leaf(here) => closest_in_leaf(here, hit, &mut best, tally),
             Content::Inner(kids) => {
                 let entries = enter_children(h, &kids, probe);
                 let kids = kids.of_arity(H::ARITY);
@@ -739,7 +824,7 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
                     };
                     if !heap.push(tc as f64, c) {
                         // Queue full: search this subtree depth-first now.
-                        best = subtree_ray(h, prims, probe, c, best, tally)?;
+                        best = subtree_ray(h, hit, probe, c, best, tally)?;
                     }
                 }
             }
@@ -749,10 +834,10 @@ fn ray_best_first<H: Hierarchy + ?Sized, P: RayTarget>(
 }
 
 /// Depth-first closest hit below `root`, starting from `best`.
-fn subtree_ray<H: Hierarchy + ?Sized, P: RayTarget>(
+fn subtree_ray<H: Hierarchy + ?Sized, G: Growth>(
     h: &H,
-    prims: &[P],
-    probe: &Probe,
+    hit: &impl Fn(u32) -> Option<f32>,
+    probe: &Probe<G>,
     root: u32,
     mut best: Option<Hit>,
     tally: &mut impl Tally,
@@ -765,7 +850,7 @@ fn subtree_ray<H: Hierarchy + ?Sized, P: RayTarget>(
             _ => continue,
         }
         match h.content(n) {
-            Content::Leaf(here) => closest_in_leaf(prims, here, &probe.ray, &mut best, tally),
+            Content::Leaf(here) => closest_in_leaf(here, hit, &mut best, tally),
             Content::Inner(kids) => {
                 for &c in kids.as_slice().iter().rev() {
                     stack.push(c)?;
@@ -781,24 +866,35 @@ pub(crate) fn ray_hits_any<H: Hierarchy + ?Sized, P: RayTarget>(
     h: &H,
     prims: &[P],
     ray: &Ray,
-    mut tally: impl Tally,
+    tally: impl Tally,
 ) -> Result<Option<Hit>, Error> {
     check_query(h, prims.len())?;
     if h.is_empty() {
         return Ok(None);
     }
     let probe = Probe::new(ray, &h.bv(h.root()).aabb());
+    any_hit(h, &probe, |p| prims[p as usize].ray_hit(ray), tally)
+}
+
+/// Some hit of a probe whose primitive test is `hit`, stopping at the first.
+#[inline(always)]
+pub(crate) fn any_hit<H: Hierarchy + ?Sized, G: Growth>(
+    h: &H,
+    probe: &Probe<G>,
+    hit: impl Fn(u32) -> Option<f32>,
+    mut tally: impl Tally,
+) -> Result<Option<Hit>, Error> {
     let mut stack = Stack::<u32, DFS_STACK>::with(h.root(), h.depth());
     while let Some(n) = stack.pop() {
         tally.bv_tests(1);
-        if enter(h, n, &probe).is_none() {
+        if enter(h, n, probe).is_none() {
             continue;
         }
         match h.content(n) {
             Content::Leaf(here) => {
                 for &p in here {
                     tally.prim_tests(1);
-                    if let Some(t) = prims[p as usize].ray_hit(ray) {
+                    if let Some(t) = hit(p) {
                         return Ok(Some(Hit { prim: p, t }));
                     }
                 }

@@ -1,7 +1,7 @@
 //! Single-tree queries: which primitives does a region touch?
 
 use super::stack::Stack;
-use super::{Hit, Nearest, PointDistance, Ray, RayOrder, RayTarget, Tally};
+use super::{CastTarget, Hit, Nearest, PointDistance, Ray, RayOrder, RayTarget, ShapeCast, Tally};
 #[cfg(feature = "kdop")]
 use crate::bv::Kdop;
 #[cfg(feature = "sphere")]
@@ -306,6 +306,29 @@ pub trait Query: Hierarchy {
         tally: impl Tally,
     ) -> Result<Option<Hit>, Error> {
         super::ray::ray_hits_any(self, prims, ray, tally)
+    }
+
+    /// The first primitive a moving sphere or box touches (see
+    /// [`Bvh::cast_shape`]).
+    fn cast_shape<P: CastTarget>(
+        &self,
+        prims: &[P],
+        cast: &ShapeCast,
+        order: RayOrder,
+        tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        super::cast::cast_shape(self, prims, cast, order, tally)
+    }
+
+    /// Some primitive a moving shape touches, stopping at the first (see
+    /// [`Bvh::shape_hits_any`]).
+    fn shape_hits_any<P: CastTarget>(
+        &self,
+        prims: &[P],
+        cast: &ShapeCast,
+        tally: impl Tally,
+    ) -> Result<Option<Hit>, Error> {
+        super::cast::shape_hits_any(self, prims, cast, tally)
     }
 
     /// The primitive nearest to `point`, best-first (see [`Bvh::nearest`]).

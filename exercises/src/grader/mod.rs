@@ -56,6 +56,7 @@ mod ex47_within;
 mod ex48_rebuild;
 mod ex49_baked;
 mod ex50_frame_box;
+mod ex51_sphere_cast;
 #[cfg(test)]
 mod wrong;
 
@@ -84,7 +85,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 50] = [
+pub const EXERCISES: [(u32, &str); 51] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -156,6 +157,7 @@ pub const EXERCISES: [(u32, &str); 50] = [
         50,
         "entering the world: a box in a local frame, rounded outward",
     ),
+    (51, "sweeping a ball: the time of impact against a triangle"),
 ];
 
 /// A score for one exercise.
@@ -226,6 +228,7 @@ pub fn checks() -> Vec<Check> {
         ex48_rebuild::checks(),
         ex49_baked::checks(),
         ex50_frame_box::checks(),
+        ex51_sphere_cast::checks(),
     ]
     .concat()
 }
@@ -439,7 +442,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 545/545 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 555/555 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -54,6 +54,7 @@ use super::ex47_within;
 use super::ex48_rebuild;
 use super::ex49_baked;
 use super::ex50_frame_box;
+use super::ex51_sphere_cast;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -121,6 +122,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (48, ex48_rebuild::wrong::COUNT),
         (49, ex49_baked::wrong::COUNT),
         (50, ex50_frame_box::wrong::COUNT),
+        (51, ex51_sphere_cast::wrong::COUNT),
     ]
 }
 
@@ -405,5 +407,15 @@ impl Exercises for Wrong {
     }
     fn frame_box(&self, origin: DVec3, min: DVec3, max: DVec3) -> Aabb {
         ex50_frame_box::wrong::frame_box(self.k(50), origin, min, max)
+    }
+    fn sphere_cast(
+        &self,
+        tri: &Triangle,
+        centre: Vec3,
+        radius: f32,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<f32> {
+        ex51_sphere_cast::wrong::sphere_cast(self.k(51), tri, centre, radius, dir, t_max)
     }
 }

@@ -64,6 +64,15 @@ where
         assert_eq!(h.cast_ray(&NONE, &ray, order, ()).unwrap(), None, "{name}");
     }
     assert_eq!(h.ray_hits_any(&NONE, &ray, ()).unwrap(), None, "{name}");
+    let ball = bvhkit::ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::X, f32::INFINITY).unwrap();
+    for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
+        assert_eq!(
+            h.cast_shape(&NONE, &ball, order, ()).unwrap(),
+            None,
+            "{name}"
+        );
+    }
+    assert_eq!(h.shape_hits_any(&NONE, &ball, ()).unwrap(), None, "{name}");
     assert_eq!(h.nearest(&NONE, Vec3::ZERO, ()).unwrap(), None, "{name}");
     // A bad query point is still an error on the empty tree: the caller's
     // mistake does not depend on the scene.

@@ -249,6 +249,15 @@ fn direct_queries<B: BoundingVolume>(
     for order in [RayOrder::DepthFirst, RayOrder::BestFirst] {
         prop_assert_eq!(tree.cast_ray(prims, &ray, order, ()).unwrap(), want);
     }
+    check_casts(
+        tree,
+        prims,
+        ray.origin(),
+        ray.dir(),
+        0.4,
+        100.0,
+        "dynamic tree",
+    )?;
     let probe = Vec3::new(0.5, -0.25, 1.0);
     prop_assert_eq!(
         tree.nearest(prims, probe, ()).unwrap(),

@@ -89,6 +89,8 @@ fn check<B: BoundingVolume>(
             ray
         );
     }
+    let size = bounds.extent().max_element() * 0.1 * probe.2;
+    check_casts(&tree, prims, ray.origin(), dir, size, ray.t_max(), B::NAME)?;
     let any = tree.ray_hits_any(prims, &ray, ()).unwrap();
     prop_assert_eq!(any.is_some(), want.is_some());
     if let Some(h) = any {
