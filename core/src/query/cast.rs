@@ -703,6 +703,15 @@ mod tests {
         for (k, b) in bad.iter().enumerate() {
             assert!(matches!(b, Err(Error::InvalidQuery(_))), "{k}: {b:?}");
         }
+        // A box with one infinite corner is refused as a box (not later, as
+        // a path whose centre is infinite).
+        for corners in [
+            (Vec3::ZERO, Vec3::INFINITY),
+            (Vec3::NEG_INFINITY, Vec3::ZERO),
+        ] {
+            let half_open = ShapeCast::aabb(&Aabb::new(corners.0, corners.1), Vec3::X, 1.0);
+            assert!(matches!(half_open, Err(Error::InvalidQuery(m)) if m.contains("swept box")));
+        }
         let ok = ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::X, f32::INFINITY).unwrap();
         assert!(ok.with_t_max(f32::NAN).is_err());
         assert_eq!(ok.with_t_max(2.0).unwrap().path().t_max(), 2.0);
@@ -732,6 +741,34 @@ mod tests {
             (c.path().origin(), c.half_extents()),
             (Vec3::splat(0.5), Vec3::splat(0.5))
         );
+        // A box whose rounded half extent falls short on the low side only
+        // (found by a search over f32 boxes): raised until it holds.
+        let (lo, hi) = (Vec3::splat(4477.117), Vec3::splat(694224.0));
+        let c = ShapeCast::aabb(&Aabb::new(lo, hi), Vec3::X, 1.0).unwrap();
+        let (centre, half) = (c.path().origin(), c.half_extents());
+        assert!((centre - half).cmple(lo).all() && (centre + half).cmpge(hi).all());
+    }
+
+    /// The reference keeps the smallest `t` and, on a tie, the lowest
+    /// index; a miss is `None`.
+    #[test]
+    fn brute_force_keeps_the_first_contact_and_the_lowest_index() {
+        use crate::query::brute_force::cast_closest;
+        let pts = [
+            Vec3::new(6.0, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(2.0, 5.0, 0.0),
+            Vec3::new(5.0, 0.0, 0.0),
+        ];
+        let ball = ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::X, 10.0).unwrap();
+        let hit = cast_closest(&pts, &ball).unwrap();
+        assert_eq!((hit.prim, hit.t), (1, 2.0));
+        let reversed: [Vec3; 5] = core::array::from_fn(|i| pts[4 - i]);
+        let hit = cast_closest(&reversed, &ball).unwrap();
+        assert_eq!((hit.prim, hit.t), (2, 2.0));
+        let away = ShapeCast::sphere(Vec3::ZERO, 1.0, -Vec3::X, 10.0).unwrap();
+        assert_eq!(cast_closest(&pts, &away), None);
     }
 
     #[test]
