@@ -584,27 +584,55 @@ mod tests {
                 let h = (half + grow).max(Vec3::ZERO);
                 Aabb::new(c - h, c + h).overlaps(b)
             }
+            (Prim::Point(p), Swept::Sphere { radius }) => p.distance(c) <= (radius + grow).max(0.0),
+            (Prim::Point(p), Swept::Box { half }) => {
+                let h = (half + grow).max(Vec3::ZERO);
+                (c - h).cmple(*p).all() && p.cmple(c + h).all()
+            }
+            #[cfg(feature = "sphere")]
+            (Prim::Ball(s), Swept::Sphere { radius }) => {
+                s.center.distance(c) <= (radius + s.radius + grow).max(0.0)
+            }
+            #[cfg(feature = "sphere")]
+            (Prim::Ball(s), Swept::Box { half }) => {
+                let h = (half + grow).max(Vec3::ZERO);
+                let q = s.center.clamp(c - h, c + h);
+                q.distance(s.center) <= (s.radius + grow).max(0.0)
+            }
         }
     }
 
     enum Prim {
         Tri(Triangle),
         Box(Aabb),
+        Point(Vec3),
+        #[cfg(feature = "sphere")]
+        Ball(Sphere),
     }
 
     impl Prim {
         fn cast_hit(&self, cast: &ShapeCast) -> Option<f32> {
             match self {
-                Prim::Tri(t) => t.cast_hit(cast),
+                Prim::Tri(t) => {
+                    let hit = t.cast_hit(cast);
+                    // Corners and references: the same test.
+                    assert_eq!(t.v.cast_hit(cast), hit);
+                    assert_eq!((&t).cast_hit(cast), hit);
+                    hit
+                }
                 Prim::Box(b) => b.cast_hit(cast),
+                Prim::Point(p) => p.cast_hit(cast),
+                #[cfg(feature = "sphere")]
+                Prim::Ball(s) => s.cast_hit(cast),
             }
         }
     }
 
     /// Against the oracle sampled along the path: the reported time touches
     /// (within a tolerance), no earlier sample touches, and a miss touches
-    /// at no sample. Triangles (some degenerate) and boxes, spheres and boxes
-    /// of every size including zero, paths through, past and along faces.
+    /// at no sample. Triangles (some degenerate), boxes, points and balls;
+    /// swept spheres and boxes of every size including zero; paths through,
+    /// past and along faces.
     #[test]
     fn time_of_impact_agrees_with_sampled_contact() {
         let mut f = floats(7);
@@ -612,12 +640,15 @@ mod tests {
         let (mut hits, mut misses, mut at_start) = (0, 0, 0);
         for case in 0..3000 {
             let a = p(8.0);
-            let prim = match case % 4 {
+            let prim = match case % 6 {
                 0 => Prim::Box(Aabb::new(a, a + p(4.0).abs())),
                 1 => Prim::Tri(Triangle::new(a, a + p(6.0), a)),
+                4 => Prim::Point(a),
+                #[cfg(feature = "sphere")]
+                5 => Prim::Ball(Sphere::new(a, p(4.0).x.abs())),
                 _ => Prim::Tri(Triangle::new(a, a + p(6.0), a + p(6.0))),
             };
-            let shape = if case % 3 == 0 {
+            let shape = if (case / 6) % 3 == 0 {
                 Swept::Box {
                     half: p(2.0).abs() * f32::from(u8::from(case % 7 != 0)),
                 }
@@ -710,7 +741,9 @@ mod tests {
             (Vec3::NEG_INFINITY, Vec3::ZERO),
         ] {
             let half_open = ShapeCast::aabb(&Aabb::new(corners.0, corners.1), Vec3::X, 1.0);
-            assert!(matches!(half_open, Err(Error::InvalidQuery(m)) if m.contains("swept box")));
+            assert!(
+                matches!(half_open, Err(Error::InvalidQuery(m)) if m.contains("finite corners"))
+            );
         }
         let ok = ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::X, f32::INFINITY).unwrap();
         assert!(ok.with_t_max(f32::NAN).is_err());
