@@ -820,6 +820,22 @@ pub trait Exercises {
         dir: Vec3,
         t_max: f32,
     ) -> Option<f32>;
+
+    /// Exercise 52: the rotation by area of a dynamic tree's node, as
+    /// [`area_rotation`](bvhkit::builders::area_rotation) chooses it. The
+    /// node has `children` (0 left, 1 right); `grandchildren[k]` holds
+    /// `children[k]`'s own two children, or `None` if it is a leaf. A swap
+    /// `(down, up)` moves `children[down]` into the other child, in place of
+    /// that child's child `up`, which moves up. Only the child that receives
+    /// a node changes its box (the union of what it then holds), so return
+    /// the swap after which that box has the smallest surface area, if that
+    /// is smaller than the box's area before; `None` if no swap shrinks it.
+    /// Ties go to the first in the order (0, 0), (0, 1), (1, 0), (1, 1).
+    fn area_rotation(
+        &self,
+        children: [Aabb; 2],
+        grandchildren: [Option<[Aabb; 2]>; 2],
+    ) -> Option<(usize, usize)>;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

@@ -41,6 +41,20 @@ impl Exercises for Reference {
         bvhkit::CastTarget::cast_hit(tri, &cast)
     }
 
+    fn area_rotation(
+        &self,
+        children: [Aabb; 2],
+        grandchildren: [Option<[Aabb; 2]>; 2],
+    ) -> Option<(usize, usize)> {
+        let [l, r] = &children;
+        let [gl, gr] = &grandchildren;
+        let (gl, gr) = (
+            gl.as_ref().map(|[a, b]| [a, b]),
+            gr.as_ref().map(|[a, b]| [a, b]),
+        );
+        bvhkit::builders::area_rotation([l, r], [gl, gr]).map(|r| (r.down, r.up))
+    }
+
     fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
         a.overlaps(b)
     }

@@ -715,4 +715,19 @@ impl Exercises for Student {
         let _ = (tri, centre, radius, dir, t_max);
         todo!("exercise 51")
     }
+
+    fn area_rotation(
+        &self,
+        children: [Aabb; 2],
+        grandchildren: [Option<[Aabb; 2]>; 2],
+    ) -> Option<(usize, usize)> {
+        // Hint: for `down` in 0 and 1, the other child `1 - down` must have
+        // children to receive it. Before: that child's area. After moving
+        // `children[down]` in place of grandchild `up`, the child holds
+        // `children[down]` and the grandchild `1 - up`: the area of their
+        // union. Keep the largest saving (before - after) that is positive,
+        // replacing it only when a later one is strictly larger.
+        let _ = (children, grandchildren);
+        todo!("exercise 52")
+    }
 }

@@ -9,6 +9,7 @@ fn main() {
             Rotations::Off,
             Rotations::Always,
             Rotations::AboveHeight(24),
+            Rotations::Area,
         ] {
             for order in [
                 InsertOrder::Shuffled(1),

@@ -1,6 +1,7 @@
 //! Profiles one broad-phase workload: 100 000 boxes drifting, every box (or
 //! one in ten, with `--tenth`) moving each step; times the updates and the
-//! steps separately. `cargo run --release -p bvhkit-std --example profile_broad_phase`
+//! steps separately. `--descent` and `--area` pick the tree's sibling search
+//! and area rotations. `cargo run --release -p bvhkit-std --example profile_broad_phase`
 use bvhkit::builders::DynamicConfig;
 use bvhkit::collision::PairTracker;
 use std::time::{Duration, Instant};
@@ -25,7 +26,11 @@ fn main() {
             } else {
                 Default::default()
             },
-            ..Default::default()
+            rotations: if std::env::args().any(|a| a == "--area") {
+                bvhkit::builders::Rotations::Area
+            } else {
+                DynamicConfig::default().rotations
+            },
         },
     )
     .unwrap();

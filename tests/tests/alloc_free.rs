@@ -7,7 +7,7 @@
 
 use bvhkit::builders::{
     refit_all, BottomUp, BottomUpScratch, Cluster, DynNode, DynamicConfig, DynamicTree,
-    InsertOrder, Insertion, LeafHandle, MergeMetric, Refit, SiblingSearch,
+    InsertOrder, Insertion, LeafHandle, MergeMetric, Refit, Rotations, SiblingSearch,
 };
 use bvhkit::collision::{collide, BroadPhase, Object};
 use bvhkit::glam::{Quat, Vec3};
@@ -195,6 +195,20 @@ fn check<B: BoundingVolume + Send + Sync>(failures: &mut Vec<String>) {
             tree.remove(handles[0]).unwrap();
             tree.validate().unwrap();
             tree.to_bvh(&mut ins_nodes, &mut ins_idx).unwrap();
+            // Rotations by area and the reinsertion optimiser.
+            let mut tree = DynamicTree::new(
+                &mut storage,
+                DynamicConfig {
+                    rotations: Rotations::Area,
+                    ..DynamicConfig::default()
+                },
+            )
+            .unwrap();
+            for (i, p) in a.iter().enumerate().take(40) {
+                tree.insert(i as u32, &p.bounds()).unwrap();
+            }
+            assert!(tree.optimize(100).unwrap() > 0);
+            tree.validate().unwrap();
         });
         if allocs != 0 {
             failures.push(format!(

@@ -164,6 +164,13 @@ pub enum Rotations {
     Always,
     /// Rebalance only nodes taller than this height.
     AboveHeight(u32),
+    /// Rotations chosen by surface area (as Box2D v3 does): at every node on
+    /// the path to the root, swap a child with a grandchild on the other side
+    /// when that shrinks the area of the child that changes, the swap that
+    /// shrinks it most. Heights are not balanced (a height rotation still
+    /// steps in where the tree would pass [`MAX_DEPTH`]), so the tree keeps
+    /// the quality that height rotations give away.
+    Area,
 }
 
 /// Options of a [`DynamicTree`].
@@ -227,6 +234,8 @@ pub struct DynamicTree<'s, B> {
     /// The largest object id of a live leaf (meaningless when empty): a
     /// query's primitive slice must reach it.
     max_item: u32,
+    /// The storage slot where [`optimize`](DynamicTree::optimize) goes on.
+    cursor: u32,
 }
 
 fn area<B: BoundingVolume>(b: &B) -> f64 {
@@ -268,6 +277,64 @@ fn cost_in<B: BoundingVolume>(nodes: &[DynNode<B>], sibling: u32, bv: &B) -> f64
     cost
 }
 
+/// One rotation by area (see [`Rotations::Area`]): the node's child `down`
+/// (0 the left, 1 the right) moves into its other child, in place of that
+/// child's child `up` (0 its left, 1 its right), which moves up beside
+/// the child that stayed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AreaRotation {
+    /// Which child of the node moves down.
+    pub down: usize,
+    /// Which child of the other child moves up.
+    pub up: usize,
+}
+
+/// The rotation by area of a node with `children`, each with its own two
+/// children if it is not a leaf (`grandchildren[k]` belongs to
+/// `children[k]`): of the up to four swaps, the one after which the child
+/// that received a node has the smallest surface area, if that is smaller
+/// than before; `None` when no swap shrinks it. Ties go to the first in the
+/// order (down 0, up 0), (0, 1), (1, 0), (1, 1). The node's own volume is
+/// the same after any swap, so this area is the whole change in the tree's
+/// cost. Areas are compared with lengths scaled by a power of two that brings
+/// the node to unit size, so huge and tiny scenes rotate as unit ones do.
+///
+/// ```
+/// use bvhkit::builders::{area_rotation, AreaRotation};
+/// use bvhkit::Aabb;
+/// use glam::Vec3;
+/// let unit = |x: f32| Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0));
+/// // A leaf at 0 beside a node over leaves at 1 and 9: the leaf at 9 should
+/// // move up, and the leaf at 0 down beside the leaf at 1.
+/// let (a, b, c) = (unit(0.0), unit(1.0), unit(9.0));
+/// let inner = a.union(&b).union(&c); // (any volume holding b and c)
+/// let r = area_rotation([&a, &inner], [None, Some([&b, &c])]);
+/// assert_eq!(r, Some(AreaRotation { down: 0, up: 1 }));
+/// // Already the best shape: nothing to do.
+/// assert_eq!(area_rotation([&c, &a.union(&b)], [None, Some([&a, &b])]), None);
+/// ```
+pub fn area_rotation<B: BoundingVolume>(
+    children: [&B; 2],
+    grandchildren: [Option<[&B; 2]>; 2],
+) -> Option<AreaRotation> {
+    let scale = unit_scale(&enclose(children[0], children[1]).aabb());
+    let mut best: Option<(AreaRotation, f64)> = None;
+    for down in 0..2 {
+        let Some(kids) = grandchildren[1 - down] else {
+            continue; // the other child is a leaf: nothing moves into it
+        };
+        let before = area_in(children[1 - down], scale);
+        for up in 0..2 {
+            let after = area_in(&enclose(children[down], kids[1 - up]), scale);
+            let saved = before - after;
+            if saved > 0.0 && best.is_none_or(|(_, b)| saved > b) {
+                best = Some((AreaRotation { down, up }, saved));
+            }
+        }
+    }
+    best.map(|(r, _)| r)
+}
+
 impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// An empty tree over `storage` (room for `(storage.len() + 1) / 2` objects).
     pub fn new(storage: &'s mut [DynNode<B>], config: DynamicConfig) -> Result<Self, Error> {
@@ -297,6 +364,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             config,
             forced_rebalances: 0,
             max_item: 0,
+            cursor: 0,
         })
     }
 
@@ -470,6 +538,84 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             return Err(e); // the object is no longer in the tree
         }
         Ok(true)
+    }
+
+    /// Improves the tree a little: takes up to `budget` nodes out, each with
+    /// its subtree, and inserts each again where it now costs least, and
+    /// returns how many it reinserted. Nodes are taken in storage order (the
+    /// root excepted), each call going on where the last one stopped, so a
+    /// few per frame visit the whole tree in turn.
+    ///
+    /// Why it helps: a tree grown one insertion at a time (or kept up by
+    /// updates while objects drift) has nodes that went where they cost
+    /// least *then*. Taken out, a node's best sibling is searched in the
+    /// tree as it is now. Moving whole subtrees, not only leaves, is what
+    /// untangles a bad shape (a chain, say): a leaf moved alone leaves the
+    /// chain's inner nodes where they were (the reinsertion search of
+    /// Bittner, Hapala and Havran, here in storage order, not by a measure
+    /// of how badly each node sits). With [`SiblingSearch::BranchAndBound`]
+    /// and a box tree, the old place is one of the candidates, so the total
+    /// node area (the cost the search minimises) does not grow, unless
+    /// height rotations ([`Rotations::Always`], [`Rotations::AboveHeight`])
+    /// trade area for balance afterwards; [`Rotations::Area`] only ever
+    /// shrinks it. Handles, items and fat volumes stay as they are. A tree
+    /// with fewer than three objects has nothing to gain.
+    ///
+    /// Errors: only a tree that would pass [`MAX_DEPTH`] even after
+    /// rebalancing (not seen in practice); the node then goes back where it
+    /// was, and nothing is lost.
+    ///
+    /// ```
+    /// use bvhkit::builders::{DynNode, DynamicConfig, DynamicTree, Rotations};
+    /// use bvhkit::Aabb;
+    /// use glam::Vec3;
+    /// // Sorted input without rotations: every box lands on one long spine.
+    /// let config = DynamicConfig { rotations: Rotations::Off, ..Default::default() };
+    /// let mut storage = vec![DynNode::<Aabb>::EMPTY; 2 * 40 - 1];
+    /// let mut tree = DynamicTree::new(&mut storage, config)?;
+    /// for i in 0..40 {
+    ///     let lo = Vec3::new(i as f32, 0.0, 0.0);
+    ///     tree.insert(i, &Aabb::new(lo, lo + Vec3::splat(0.5)))?;
+    /// }
+    /// let before = tree.area_sum();
+    /// for _ in 0..4 {
+    ///     tree.optimize(40)?; // one pass over every leaf
+    /// }
+    /// tree.validate()?;
+    /// assert_eq!(tree.len(), 40);
+    /// assert!(tree.area_sum() < before);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    pub fn optimize(&mut self, budget: usize) -> Result<usize, Error> {
+        let slots = self.nodes.len();
+        if self.leaves < 3 {
+            return Ok(0);
+        }
+        let (mut moved, mut scanned) = (0, 0);
+        while moved < budget && scanned < slots {
+            let slot = self.cursor as usize % slots;
+            self.cursor = ((slot + 1) % slots) as u32;
+            scanned += 1;
+            let node = self.nodes[slot];
+            let n = slot as u32;
+            if node.height == u32::MAX || n == self.root {
+                continue; // a free slot, or the root (nowhere else to go)
+            }
+            let p = self.nodes[node.parent as usize];
+            let old_sibling = if p.left == n { p.right } else { p.left };
+            // Taken out without rotations, the tree is the old one less this
+            // subtree, so the old place is still there to be found.
+            self.with_rotations(Rotations::Off, |t| t.detach(n));
+            if let Err(e) = self.attach(n) {
+                // Too deep even rebalanced (not seen in practice): back
+                // next to its old sibling, nothing lost.
+                let parent = self.splice(n, old_sibling)?;
+                self.with_rotations(Rotations::Off, |t| t.fix_upwards(parent));
+                return Err(e);
+            }
+            moved += 1;
+        }
+        Ok(moved)
     }
 
     /// Rebuilds every internal node top-down over the leaves as they are:
@@ -741,27 +887,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         }
         let bv = self.nodes[leaf as usize].bv;
         let sibling = self.best_sibling(&bv);
-        let parent = self.allocate()?;
-        let old_parent = self.nodes[sibling as usize].parent;
-        let sb = self.nodes[sibling as usize].bv;
-        self.nodes[parent as usize] = DynNode {
-            bv: enclose(&sb, &bv),
-            parent: old_parent,
-            left: sibling,
-            right: leaf,
-            item: 0,
-            height: self.nodes[sibling as usize].height + 1,
-            generation: self.nodes[parent as usize].generation,
-        };
-        self.nodes[sibling as usize].parent = parent;
-        self.nodes[leaf as usize].parent = parent;
-        if old_parent == NULL {
-            self.root = parent;
-        } else if self.nodes[old_parent as usize].left == sibling {
-            self.nodes[old_parent as usize].left = parent;
-        } else {
-            self.nodes[old_parent as usize].right = parent;
-        }
+        let parent = self.splice(leaf, sibling)?;
         self.fix_upwards(parent);
         if self.height() > MAX_DEPTH {
             // Too deep for the traversals' fixed stacks (only possible when
@@ -770,9 +896,9 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             // if that was not enough, along every leaf's path. Depth is
             // never a reason to refuse an object.
             self.forced_rebalances = self.forced_rebalances.saturating_add(1);
-            self.with_rotations(|t| t.fix_upwards(parent));
+            self.with_rotations(Rotations::Always, |t| t.fix_upwards(parent));
             if self.height() > MAX_DEPTH {
-                self.with_rotations(Self::rebalance_every_path);
+                self.with_rotations(Rotations::Always, Self::rebalance_every_path);
             }
         }
         if self.height() > MAX_DEPTH {
@@ -786,12 +912,39 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         Ok(())
     }
 
-    /// Runs `f` with rotations at every node, then restores the configuration.
-    fn with_rotations(&mut self, f: impl FnOnce(&mut Self)) {
-        let rotations = self.config.rotations;
-        self.config.rotations = Rotations::Always;
-        f(self);
+    /// Links `node` (a leaf or a subtree, out of the tree) next to `sibling`
+    /// under a new parent, which it returns; the caller refits upwards.
+    fn splice(&mut self, node: u32, sibling: u32) -> Result<u32, Error> {
+        let parent = self.allocate()?;
+        let old_parent = self.nodes[sibling as usize].parent;
+        let (sb, nb) = (self.nodes[sibling as usize], self.nodes[node as usize]);
+        self.nodes[parent as usize] = DynNode {
+            bv: enclose(&sb.bv, &nb.bv),
+            parent: old_parent,
+            left: sibling,
+            right: node,
+            item: 0,
+            height: 1 + sb.height.max(nb.height),
+            generation: self.nodes[parent as usize].generation,
+        };
+        self.nodes[sibling as usize].parent = parent;
+        self.nodes[node as usize].parent = parent;
+        if old_parent == NULL {
+            self.root = parent;
+        } else if self.nodes[old_parent as usize].left == sibling {
+            self.nodes[old_parent as usize].left = parent;
+        } else {
+            self.nodes[old_parent as usize].right = parent;
+        }
+        Ok(parent)
+    }
+
+    /// Runs `f` with `rotations`, then restores the configuration.
+    fn with_rotations(&mut self, rotations: Rotations, f: impl FnOnce(&mut Self)) {
+        let configured = self.config.rotations;
         self.config.rotations = rotations;
+        f(self);
+        self.config.rotations = configured;
     }
 
     /// Balances the path from every leaf to the root (O(n * height); only
@@ -855,6 +1008,10 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     fn rotate(&mut self, a: u32) -> u32 {
         let na = self.nodes[a as usize];
         let tall_enough = match self.config.rotations {
+            Rotations::Area => {
+                self.rotate_by_area(a);
+                return a;
+            }
             Rotations::Off => false,
             Rotations::Always => true,
             Rotations::AboveHeight(h) => na.height > h,
@@ -909,6 +1066,56 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         self.nodes[up as usize].bv = enclose(&lb.bv, &rb.bv);
         self.nodes[up as usize].height = 1 + lb.height.max(rb.height);
         up
+    }
+
+    /// The area rotation of `a` (see [`Rotations::Area`]): with children `b`
+    /// and `c`, moving `b` down into `c` in place of one of `c`'s children
+    /// (which moves up to `a`) leaves `c` enclosing `b` and the other child,
+    /// so `a`'s cost changes by the area of that new `c` against the old one;
+    /// and the same the other way round. The best of the (up to) four swaps
+    /// is made if it shrinks that area; `a`'s own volume does not change.
+    fn rotate_by_area(&mut self, a: u32) {
+        let na = self.nodes[a as usize];
+        if na.is_leaf() {
+            return;
+        }
+        let kids = [na.left, na.right];
+        let [l, r] = kids.map(|k| self.nodes[k as usize]);
+        let grand = |n: &DynNode<B>| {
+            (!n.is_leaf()).then(|| {
+                [
+                    &self.nodes[n.left as usize].bv,
+                    &self.nodes[n.right as usize].bv,
+                ]
+            })
+        };
+        let Some(AreaRotation { down, up }) = area_rotation([&l.bv, &r.bv], [grand(&l), grand(&r)])
+        else {
+            return;
+        };
+        let (down, into) = (kids[down], kids[1 - down]);
+        let ni = self.nodes[into as usize];
+        let (up, stay) = if up == 0 {
+            (ni.left, ni.right)
+        } else {
+            (ni.right, ni.left)
+        };
+        // `up` takes `down`'s place under `a`; `down` takes `up`'s under `into`.
+        if self.nodes[a as usize].left == down {
+            self.nodes[a as usize].left = up;
+        } else {
+            self.nodes[a as usize].right = up;
+        }
+        if ni.left == up {
+            self.nodes[into as usize].left = down;
+        } else {
+            self.nodes[into as usize].right = down;
+        }
+        self.nodes[up as usize].parent = a;
+        self.nodes[down as usize].parent = into;
+        let (d, st) = (self.nodes[down as usize], self.nodes[stay as usize]);
+        self.nodes[into as usize].bv = enclose(&d.bv, &st.bv);
+        self.nodes[into as usize].height = 1 + d.height.max(st.height);
     }
 
     /// Checks the structure: parent and child links agree, heights are exact,
@@ -1289,6 +1496,123 @@ impl Insertion {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn unit_at(x: f32) -> Aabb {
+        Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0))
+    }
+
+    #[test]
+    fn area_rotation_picks_the_swap_that_shrinks_the_changed_child_most() {
+        let (a, b, c) = (unit_at(0.0), unit_at(1.0), unit_at(9.0));
+        let bc = b.union(&c);
+        // Left leaf `a`, right node over (b, c): `c` goes up, `a` down.
+        assert_eq!(
+            area_rotation([&a, &bc], [None, Some([&b, &c])]),
+            Some(AreaRotation { down: 0, up: 1 })
+        );
+        // The same the other way round, and with the grandchildren swapped.
+        assert_eq!(
+            area_rotation([&bc, &a], [Some([&c, &b]), None]),
+            Some(AreaRotation { down: 1, up: 0 })
+        );
+        // Two leaves, or a node already in its best shape: nothing.
+        assert_eq!(area_rotation::<Aabb>([&a, &c], [None, None]), None);
+        let ab = a.union(&b);
+        assert_eq!(area_rotation([&c, &ab], [None, Some([&a, &b])]), None);
+        // Both children inner: of four swaps, the one that saves most. Left
+        // over (0, 1), right over (2, 30): the left node moving down beside
+        // 2 lifts 30 out of the right one.
+        let (l0, l1, r0, r1) = (unit_at(0.0), unit_at(1.0), unit_at(2.0), unit_at(30.0));
+        let (l, r) = (l0.union(&l1), r0.union(&r1));
+        let got = area_rotation([&l, &r], [Some([&l0, &l1]), Some([&r0, &r1])]);
+        assert_eq!(got, Some(AreaRotation { down: 0, up: 1 }));
+        let got = area_rotation([&r, &l], [Some([&r1, &r0]), Some([&l1, &l0])]);
+        assert_eq!(got, Some(AreaRotation { down: 1, up: 0 }));
+        // Two swaps saving the same: the first in order.
+        let (b, c) = (unit_at(-9.0), unit_at(9.0));
+        let bc = b.union(&c);
+        assert_eq!(
+            area_rotation([&a, &bc], [None, Some([&b, &c])]),
+            Some(AreaRotation { down: 0, up: 0 })
+        );
+        // A swap that keeps the area exactly is not made.
+        let same = a.union(&a);
+        assert_eq!(area_rotation([&a, &same], [None, Some([&a, &a])]), None);
+        // Far from unit size, the same choice.
+        let s = |x: f32| {
+            Aabb::new(
+                Vec3::new(x, 0.0, 0.0) * 1e30,
+                Vec3::new(x + 1.0, 1.0, 1.0) * 1e30,
+            )
+        };
+        let (a, b, c) = (s(0.0), s(1.0), s(9.0));
+        assert_eq!(
+            area_rotation([&a, &b.union(&c)], [None, Some([&b, &c])]),
+            Some(AreaRotation { down: 0, up: 1 })
+        );
+    }
+
+    #[test]
+    fn area_rotations_keep_a_sorted_line_shallow_and_cheap() {
+        let n = 256;
+        let mut plain = [DynNode::<Aabb>::EMPTY; 511];
+        let mut area = [DynNode::<Aabb>::EMPTY; 511];
+        let off = DynamicConfig {
+            rotations: Rotations::Off,
+            ..Default::default()
+        };
+        let by_area = DynamicConfig {
+            rotations: Rotations::Area,
+            ..Default::default()
+        };
+        let mut t_off = DynamicTree::new(&mut plain, off).unwrap();
+        let mut t_area = DynamicTree::new(&mut area, by_area).unwrap();
+        for i in 0..n {
+            t_off.insert(i, &unit_at(i as f32 * 2.0)).unwrap();
+            t_area.insert(i, &unit_at(i as f32 * 2.0)).unwrap();
+        }
+        t_area.validate().unwrap();
+        let (area, off) = (t_area.area_sum(), t_off.area_sum());
+        assert!(area < 0.5 * off, "{area} against {off}");
+        let (h_area, h_off) = (t_area.height(), t_off.height());
+        assert!(h_area < h_off, "{h_area} against {h_off}");
+    }
+
+    #[test]
+    fn optimize_goes_on_where_it_stopped_and_repairs_a_chain() {
+        let mut storage = [DynNode::<Aabb>::EMPTY; 2 * 64 - 1];
+        let config = DynamicConfig {
+            rotations: Rotations::Off,
+            ..Default::default()
+        };
+        let mut tree = DynamicTree::new(&mut storage, config).unwrap();
+        let mut handles = [LeafHandle::from_parts(0, 0); 64];
+        for (i, h) in handles.iter_mut().enumerate().take(2) {
+            *h = tree.insert(i as u32, &unit_at(i as f32 * 2.0)).unwrap();
+        }
+        // Two objects: nothing to gain.
+        assert_eq!(tree.optimize(10), Ok(0));
+        for (i, h) in handles.iter_mut().enumerate().skip(2) {
+            *h = tree.insert(i as u32, &unit_at(i as f32 * 2.0)).unwrap();
+        }
+        assert_eq!(tree.optimize(0), Ok(0));
+        let (area, height) = (tree.area_sum(), tree.height());
+        // 127 nodes, the root stays: a pass is 126 moves, in three calls.
+        assert_eq!(tree.optimize(50), Ok(50));
+        assert_eq!(tree.optimize(50), Ok(50));
+        let rest = tree.optimize(1000).unwrap();
+        assert!((20..=126).contains(&rest), "{rest}");
+        tree.validate().unwrap();
+        assert!(
+            tree.area_sum() < 0.6 * area,
+            "{} against {area}",
+            tree.area_sum()
+        );
+        assert!(tree.height() < height / 2);
+        for (i, &h) in handles.iter().enumerate() {
+            assert_eq!(tree.item(h), Ok(i as u32));
+        }
+    }
 
     /// The branch-and-bound search as it was before it took a seed bound
     /// from a greedy path: the seeded search must pick the same sibling.

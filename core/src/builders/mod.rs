@@ -24,8 +24,8 @@ pub use bottom_up::{BottomUp, BottomUpScratch, Cluster, MergeMetric, Method};
 pub use collapse::Collapse;
 #[cfg(feature = "insertion")]
 pub use dynamic::{
-    DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion, LeafHandle, Rotations,
-    SiblingSearch, NULL,
+    area_rotation, AreaRotation, DynNode, DynamicConfig, DynamicTree, InsertOrder, Insertion,
+    LeafHandle, Rotations, SiblingSearch, NULL,
 };
 pub use presets::{Preset, PRESETS};
 pub use refit::{refit_all, Refit};

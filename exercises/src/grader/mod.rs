@@ -57,6 +57,7 @@ mod ex48_rebuild;
 mod ex49_baked;
 mod ex50_frame_box;
 mod ex51_sphere_cast;
+mod ex52_area_rotation;
 #[cfg(test)]
 mod wrong;
 
@@ -85,7 +86,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 51] = [
+pub const EXERCISES: [(u32, &str); 52] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -158,6 +159,10 @@ pub const EXERCISES: [(u32, &str); 51] = [
         "entering the world: a box in a local frame, rounded outward",
     ),
     (51, "sweeping a ball: the time of impact against a triangle"),
+    (
+        52,
+        "rotating by area: the swap that shrinks a dynamic tree most",
+    ),
 ];
 
 /// A score for one exercise.
@@ -229,6 +234,7 @@ pub fn checks() -> Vec<Check> {
         ex49_baked::checks(),
         ex50_frame_box::checks(),
         ex51_sphere_cast::checks(),
+        ex52_area_rotation::checks(),
     ]
     .concat()
 }
@@ -442,7 +448,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 555/555 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 565/565 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -55,6 +55,7 @@ use super::ex48_rebuild;
 use super::ex49_baked;
 use super::ex50_frame_box;
 use super::ex51_sphere_cast;
+use super::ex52_area_rotation;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -123,6 +124,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (49, ex49_baked::wrong::COUNT),
         (50, ex50_frame_box::wrong::COUNT),
         (51, ex51_sphere_cast::wrong::COUNT),
+        (52, ex52_area_rotation::wrong::COUNT),
     ]
 }
 
@@ -417,5 +419,13 @@ impl Exercises for Wrong {
         t_max: f32,
     ) -> Option<f32> {
         ex51_sphere_cast::wrong::sphere_cast(self.k(51), tri, centre, radius, dir, t_max)
+    }
+
+    fn area_rotation(
+        &self,
+        children: [Aabb; 2],
+        grandchildren: [Option<[Aabb; 2]>; 2],
+    ) -> Option<(usize, usize)> {
+        ex52_area_rotation::wrong::area_rotation(self.k(52), children, grandchildren)
     }
 }
