@@ -116,6 +116,19 @@ impl Mesh {
     /// by its triangle), more triangles than 32-bit indices name. No
     /// triangles is not an error: an empty mesh answers every query with
     /// nothing.
+    ///
+    /// ```
+    /// use bvhkit::{Mesh, Triangle};
+    /// use glam::Vec3;
+    /// let floor = Mesh::new(vec![
+    ///     Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    ///     Triangle::new(Vec3::new(4.0, 0.0, 0.0), Vec3::new(4.0, 4.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    /// ])?;
+    /// assert_eq!(floor.triangles().len(), 2);
+    /// assert!(Mesh::new(vec![Triangle::new(Vec3::NAN, Vec3::ZERO, Vec3::X)]).is_err());
+    /// assert!(Mesh::new(Vec::new())?.cast_ray(&bvhkit::Ray::new(Vec3::ZERO, Vec3::X, 1.0)?).is_none());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn new(triangles: Vec<Triangle>) -> Result<Mesh, Error> {
         Mesh::with_builder(triangles, &TopDown::default())
     }
@@ -202,6 +215,20 @@ impl Mesh {
     /// The first triangle `ray` meets (the smallest `t`; on a tie, the
     /// lowest index), with the hit point, normal and barycentric
     /// coordinates; `None` if it meets none within its `t_max`.
+    ///
+    /// ```
+    /// use bvhkit::{Mesh, Ray, Triangle};
+    /// use glam::Vec3;
+    /// let floor = Mesh::new(vec![
+    ///     Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    ///     Triangle::new(Vec3::new(4.0, 0.0, 0.0), Vec3::new(4.0, 4.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    /// ])?;
+    /// let down = Ray::new(Vec3::new(3.0, 3.0, 2.0), -Vec3::Z, f32::INFINITY)?;
+    /// let hit = floor.cast_ray(&down).expect("it lands on the floor");
+    /// assert_eq!((hit.triangle, hit.t, hit.point), (1, 2.0, Vec3::new(3.0, 3.0, 0.0)));
+    /// assert!(hit.front && hit.normal == Vec3::Z); // arrives from above
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn cast_ray(&self, ray: &Ray) -> Option<RayHit> {
         let tree = self.tree.view();
         // The tree was built over exactly these triangles and within the
@@ -234,6 +261,19 @@ impl Mesh {
     /// The point of the mesh closest to `p`, with its triangle, distance,
     /// barycentric coordinates and feature. `None` for an empty mesh, and
     /// for a `p` with a NaN or infinite coordinate (no point is closest).
+    ///
+    /// ```
+    /// use bvhkit::{Mesh, Triangle};
+    /// use glam::Vec3;
+    /// let floor = Mesh::new(vec![
+    ///     Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    ///     Triangle::new(Vec3::new(4.0, 0.0, 0.0), Vec3::new(4.0, 4.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    /// ])?;
+    /// let c = floor.closest_point(Vec3::new(1.0, 1.0, 3.0)).unwrap();
+    /// assert_eq!((c.triangle, c.distance), (0, 3.0));
+    /// assert_eq!(c.point, glam::DVec3::new(1.0, 1.0, 0.0));
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn closest_point(&self, p: Vec3) -> Option<PointHit> {
         let tree = self.tree.view();
         let near =
@@ -252,6 +292,19 @@ impl Mesh {
     /// that far, computed in `f64` as [`closest_point`](Self::closest_point)
     /// does), in increasing index order. Empty for a `p` or `distance` that
     /// is NaN or infinite, or a negative `distance`.
+    ///
+    /// ```
+    /// use bvhkit::{Mesh, Triangle};
+    /// use glam::Vec3;
+    /// let floor = Mesh::new(vec![
+    ///     Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    ///     Triangle::new(Vec3::new(4.0, 0.0, 0.0), Vec3::new(4.0, 4.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    /// ])?;
+    /// // Above the shared diagonal: both triangles are half a unit away.
+    /// assert_eq!(floor.within(Vec3::new(2.0, 2.0, 0.5), 0.5), [0, 1]);
+    /// assert!(floor.within(Vec3::new(2.0, 2.0, 0.5), 0.4).is_empty());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn within(&self, p: Vec3, distance: f32) -> Vec<u32> {
         let mut found = Vec::new();
         if !(p.is_finite() && distance.is_finite() && distance >= 0.0) {
@@ -277,6 +330,26 @@ impl Mesh {
     /// `other` placed by `motion` (a rigid motion into this mesh's frame;
     /// [`Rigid::IDENTITY`] for none), sorted. Neither tree is rebuilt: the
     /// motion is applied during the walk.
+    ///
+    /// ```
+    /// use bvhkit::{Mesh, Rigid, Triangle};
+    /// use glam::Vec3;
+    /// let floor = Mesh::new(vec![
+    ///     Triangle::new(Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    ///     Triangle::new(Vec3::new(4.0, 0.0, 0.0), Vec3::new(4.0, 4.0, 0.0), Vec3::new(0.0, 4.0, 0.0)),
+    /// ])?;
+    /// // A wall standing on the floor's first triangle, then lifted away.
+    /// let wall = Mesh::new(vec![Triangle::new(
+    ///     Vec3::new(0.5, 0.5, -1.0),
+    ///     Vec3::new(1.5, 0.5, -1.0),
+    ///     Vec3::new(1.0, 0.5, 1.0),
+    /// )])?;
+    /// assert_eq!(floor.pairs(&wall, &Rigid::IDENTITY), [(0, 0)]);
+    /// assert!(floor.intersects(&wall, &Rigid::IDENTITY));
+    /// let lifted = Rigid::translation(Vec3::new(0.0, 0.0, 5.0))?;
+    /// assert!(floor.pairs(&wall, &lifted).is_empty() && !floor.intersects(&wall, &lifted));
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn pairs(&self, other: &Mesh, motion: &Rigid) -> Vec<(u32, u32)> {
         let (a, b) = (self.tree.view(), other.tree.view());
         let (ta, tb) = (&self.triangles[..], &other.triangles[..]);

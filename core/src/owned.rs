@@ -195,6 +195,18 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     }
 
     /// Builds bottom-up (scratch allocated here and dropped after the build).
+    ///
+    /// ```
+    /// use bvhkit::builders::BottomUp;
+    /// use bvhkit::{Aabb, OwnedBvh, Query};
+    /// use glam::Vec3;
+    /// let pts: Vec<Vec3> = (0..100).map(|i| Vec3::new(i as f32, (i * 7 % 10) as f32, 0.0)).collect();
+    /// let tree = OwnedBvh::<Aabb>::build_bottom_up(&BottomUp::default(), &pts)?; // PLOC
+    /// assert_eq!(tree.view().primitive_count(), 100);
+    /// let region = Aabb::new(Vec3::new(10.0, 0.0, -1.0), Vec3::new(20.0, 9.0, 1.0));
+    /// assert_eq!(tree.view().overlapping(&pts, &region, |_| {})?, 11); // x = 10 ..= 20
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     #[cfg(feature = "bottom-up")]
     pub fn build_bottom_up<P: Primitive>(
         builder: &crate::builders::BottomUp,
@@ -231,6 +243,19 @@ impl<B: BoundingVolume> OwnedBvh<B> {
     }
 
     /// Builds by insertion (dynamic-tree storage allocated here and dropped).
+    ///
+    /// ```
+    /// use bvhkit::builders::{InsertOrder, Insertion};
+    /// use bvhkit::{Aabb, OwnedBvh, Query};
+    /// use glam::Vec3;
+    /// let pts: Vec<Vec3> = (0..100).map(|i| Vec3::new(i as f32, (i * 7 % 10) as f32, 0.0)).collect();
+    /// let shuffled = Insertion { order: InsertOrder::Shuffled(7), ..Insertion::default() };
+    /// let tree = OwnedBvh::<Aabb>::build_by_insertion(&shuffled, &pts)?;
+    /// assert_eq!(tree.view().primitive_count(), 100);
+    /// let region = Aabb::new(Vec3::new(10.0, 0.0, -1.0), Vec3::new(20.0, 9.0, 1.0));
+    /// assert_eq!(tree.view().overlapping(&pts, &region, |_| {})?, 11); // x = 10 ..= 20
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     #[cfg(feature = "insertion")]
     pub fn build_by_insertion<P: Primitive>(
         builder: &crate::builders::Insertion,

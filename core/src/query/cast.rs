@@ -71,6 +71,17 @@ impl ShapeCast {
     /// `t_max`. Refused ([`Error::InvalidQuery`]): a non-finite centre or
     /// direction, a zero direction, a radius that is NaN, negative or
     /// infinite, a `t_max` that is NaN or negative (it may be infinite).
+    ///
+    /// ```
+    /// use bvhkit::{ShapeCast, Swept};
+    /// use glam::Vec3;
+    /// // A ball of radius 0.5 falling from z = 3 for at most 10 units of time.
+    /// let fall = ShapeCast::sphere(Vec3::new(1.0, 1.0, 3.0), 0.5, -Vec3::Z, 10.0)?;
+    /// assert_eq!(fall.shape(), Swept::Sphere { radius: 0.5 });
+    /// assert!(ShapeCast::sphere(Vec3::ZERO, -1.0, Vec3::X, 1.0).is_err()); // negative radius
+    /// assert!(ShapeCast::sphere(Vec3::ZERO, 1.0, Vec3::ZERO, 1.0).is_err()); // no direction
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn sphere(centre: Vec3, radius: f32, dir: Vec3, t_max: f32) -> Result<ShapeCast, Error> {
         if !(radius.is_finite() && radius >= 0.0) {
             return Err(Error::InvalidQuery(
@@ -87,6 +98,18 @@ impl ShapeCast {
     /// rotate). Refused ([`Error::InvalidQuery`]): a box with a non-finite
     /// corner or inverted (`min > max` on an axis), a direction that is not
     /// finite or is zero, a `t_max` that is NaN or negative.
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, ShapeCast};
+    /// use glam::Vec3;
+    /// let crate_box = Aabb::new(Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0));
+    /// let slide = ShapeCast::aabb(&crate_box, Vec3::X, 5.0)?;
+    /// assert_eq!(slide.half_extents(), Vec3::new(1.0, 0.5, 0.5));
+    /// assert_eq!(slide.path().origin(), Vec3::new(1.0, 0.5, 0.5)); // its centre
+    /// let inverted = Aabb::new(Vec3::ONE, Vec3::ZERO);
+    /// assert!(ShapeCast::aabb(&inverted, Vec3::X, 5.0).is_err());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn aabb(start: &Aabb, dir: Vec3, t_max: f32) -> Result<ShapeCast, Error> {
         if !start.min.is_finite() || !start.max.is_finite() || start.min.cmpgt(start.max).any() {
             return Err(Error::InvalidQuery(
@@ -155,6 +178,16 @@ impl ShapeCast {
     /// A box holding the whole sweep, `t` in `[0, t_max]` (a broad phase's
     /// fat bounds for a moving object); an infinite `t_max` gives infinite
     /// bounds along the motion.
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, BoundingVolume, ShapeCast};
+    /// use glam::Vec3;
+    /// let fall = ShapeCast::sphere(Vec3::new(0.0, 0.0, 3.0), 0.5, -Vec3::Z, 2.0)?;
+    /// let fat = fall.swept_bounds(); // from z = 3 down to z = 1, radius 0.5 around
+    /// assert!(fat.contains_aabb(&Aabb::new(Vec3::new(-0.5, -0.5, 0.5), Vec3::new(0.5, 0.5, 3.5))));
+    /// assert!(fat.contains_aabb(&fall.bounds_at(1.0)));
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn swept_bounds(&self) -> Aabb {
         let start = self.bounds_at(0.0);
         let end = self.bounds_at(self.centre.t_max());

@@ -135,6 +135,21 @@ impl TopDown {
     }
 
     /// The classic median cut: equal halves along the longest axis.
+    ///
+    /// ```
+    /// use bvhkit::{Aabb, Node, TopDown};
+    /// use glam::Vec3;
+    /// // Points bunched at one end: the median still halves them, so the
+    /// // tree is balanced; the SAH cuts where the gap is.
+    /// let pts: Vec<Vec3> = (0..64).map(|i| Vec3::new(if i < 60 { i as f32 * 0.01 } else { 100.0 + i as f32 }, 0.0, 0.0)).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(64)];
+    /// let mut idx = vec![0; 64];
+    /// let median = TopDown::median().with_max_leaf_size(1).build(&pts, &mut nodes, &mut idx)?;
+    /// assert_eq!(median.depth(), 6); // 64 leaves, perfectly balanced
+    /// let sah = TopDown::sah().with_max_leaf_size(1).build(&pts, &mut nodes, &mut idx)?;
+    /// assert!(sah.depth() > 6);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub const fn median() -> Self {
         TopDown {
             partition: Partition::Balance,
