@@ -382,3 +382,46 @@ impl Mesh {
         matches!(first, Ok(Some(_)))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn floor() -> Mesh {
+        Mesh::new(vec![
+            Triangle::new(
+                Vec3::ZERO,
+                Vec3::new(4.0, 0.0, 0.0),
+                Vec3::new(0.0, 4.0, 0.0),
+            ),
+            Triangle::new(
+                Vec3::new(4.0, 0.0, 0.0),
+                Vec3::new(4.0, 4.0, 0.0),
+                Vec3::new(0.0, 4.0, 0.0),
+            ),
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn within_keeps_only_what_is_that_close_and_refuses_bad_input_quietly() {
+        let floor = floor();
+        // Off the corner (4, 4, 0): 0.9 away. The box around a ball of 0.8
+        // reaches both triangles' boxes, the ball reaches neither.
+        let p = Vec3::new(4.6, 4.6, 0.3);
+        assert!(floor.within(p, 0.8).is_empty());
+        assert_eq!(floor.within(p, 0.9), [1]);
+        // Bad input: nothing, not a panic.
+        let inside = Vec3::new(1.0, 1.0, 0.0);
+        assert_eq!(floor.within(inside, 0.0), [0]);
+        for (p, d) in [
+            (Vec3::new(f32::NAN, 1.0, 0.0), 1.0),
+            (Vec3::new(1.0, f32::INFINITY, 0.0), 1.0),
+            (inside, f32::NAN),
+            (inside, f32::INFINITY),
+            (inside, -1.0),
+        ] {
+            assert!(floor.within(p, d).is_empty(), "{p} {d}");
+        }
+    }
+}
