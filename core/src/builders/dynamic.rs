@@ -307,8 +307,7 @@ pub struct AreaRotation {
 /// // A leaf at 0 beside a node over leaves at 1 and 9: the leaf at 9 should
 /// // move up, and the leaf at 0 down beside the leaf at 1.
 /// let (a, b, c) = (unit(0.0), unit(1.0), unit(9.0));
-/// let inner = a.union(&b).union(&c); // (any volume holding b and c)
-/// let r = area_rotation([&a, &inner], [None, Some([&b, &c])]);
+/// let r = area_rotation([&a, &b.union(&c)], [None, Some([&b, &c])]);
 /// assert_eq!(r, Some(AreaRotation { down: 0, up: 1 }));
 /// // Already the best shape: nothing to do.
 /// assert_eq!(area_rotation([&c, &a.union(&b)], [None, Some([&a, &b])]), None);
@@ -579,7 +578,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// }
     /// let before = tree.area_sum();
     /// for _ in 0..4 {
-    ///     tree.optimize(40)?; // one pass over every leaf
+    ///     tree.optimize(40)?; // 40 of the 78 nodes below the root a call
     /// }
     /// tree.validate()?;
     /// assert_eq!(tree.len(), 40);
