@@ -27,6 +27,10 @@ use core::ops::ControlFlow;
 /// most `2 * MAX_DEPTH` one-sided or `MAX_DEPTH` two-sided steps.
 pub const PAIR_STACK: usize = 4 * MAX_DEPTH + 4;
 
+/// One pair waiting on the explicit pair stack: A's node, B's node and the
+/// step's depth.
+pub(super) type PairEntry = (u32, u32, u32);
+
 /// Spare entries the explicit pair stack keeps past its capacity, so that a
 /// step can write all its child pairs before knowing which it keeps.
 pub(super) const SLACK: usize = MAX_CHILDREN * MAX_CHILDREN;
@@ -826,44 +830,38 @@ where
         }
     }
 
-    /// The same traversal with an explicit stack; pairs are tested before
-    /// they are pushed. `Ok(Break)` when the sink stopped early. Not inlined,
-    /// so only the stack array in use occupies the caller's stack.
+    /// The same traversal with an explicit stack of `N` entries; pairs are
+    /// tested before they are pushed. `Ok(Break)` when the sink stopped
+    /// early. Not inlined, so only the stack array in use occupies the
+    /// caller's stack.
     #[inline(never)]
     fn stack<D: DescentRule, const N: usize>(&mut self, rule: &D) -> Result<Flow, Error> {
-        self.stack_from::<D, N>(rule, self.a.root(), self.b.root())
+        let mut stack = [(0u32, 0u32, 0u32); N];
+        self.stack_in(rule, self.a.root(), self.b.root(), &mut stack)
     }
 
-    /// [`stack_from`](Self::stack_from), out of line: one frame per stack
-    /// size, so a caller choosing between sizes holds only the one in use.
+    /// The explicit-stack walk from A's node `ra` against B's node `rb` on
+    /// the caller's `stack` (at least [`SLACK`] entries; the last `SLACK`
+    /// are spare). One copy for every stack size (the sizes differ in the
+    /// array their callers hold, not in code: 2.7 KB of flash on a
+    /// Cortex-M4 per size), and a self query walking one sibling pair after
+    /// another reuses one array instead of clearing a new one each time.
     #[inline(never)]
-    pub(super) fn stack_between<D: DescentRule, const N: usize>(
+    pub(super) fn stack_in<D: DescentRule>(
         &mut self,
         rule: &D,
         ra: u32,
         rb: u32,
+        stack: &mut [PairEntry],
     ) -> Result<Flow, Error> {
-        self.stack_from::<D, N>(rule, ra, rb)
-    }
-
-    /// [`stack`](Self::stack) from A's node `ra` against B's node `rb`
-    /// instead of the roots (a self query walks sibling subtrees).
-    #[inline(always)]
-    pub(super) fn stack_from<D: DescentRule, const N: usize>(
-        &mut self,
-        rule: &D,
-        ra: u32,
-        rb: u32,
-    ) -> Result<Flow, Error> {
-        // `N` counts `SLACK` spare entries past the capacity: they let a
+        // The last `SLACK` entries are spare: they let a
         // step write every child pair unconditionally and keep it by
         // advancing `top` by the test's outcome (no branch on an
         // unpredictable test); the capacity is checked once after the step.
         // Hence an array, not `heapless::Vec` (which pushes behind a test):
         // pushes behind tests took the armadillo query from 4.1-4.3 to
         // 4.9-5.0 ms (the book's traversal chapter has the measurement).
-        let capacity = N - SLACK;
-        let mut stack = [(0u32, 0u32, 0u32); N];
+        let capacity = stack.len().saturating_sub(SLACK);
         let mut top = 0;
         let overflow = Error::StackOverflow {
             depth: self.a.depth() + self.b.depth(),

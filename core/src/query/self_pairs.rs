@@ -17,7 +17,7 @@
 //! a self query skips them by default ([`SkipAdjacent`]), through a rule the
 //! caller can replace ([`SelfPairs::keep_adjacent`], [`SelfPairs::skip`]).
 
-use super::pair::{Flow, Leaf, PairStep, Walk, SLACK};
+use super::pair::{Flow, Leaf, PairEntry, PairStep, Walk, SLACK};
 use super::stack::Stack;
 use super::{pair_stack_bound, Answer, Bounds, Descent, DescentRule, Exact, PairTraversal, Same};
 use super::{Tally, PAIR_STACK, SMALL_PAIR_STACK, WIDE_PAIR_STACK};
@@ -406,30 +406,36 @@ where
             },
         };
         // The node walk's stack holds `(arity - 1) * depth + 1` entries:
-        // a binary tree's (65 entries) is a third of a 4-wide tree's.
-        if binary {
-            nodes::<_, _, _, _, _, _, _, BINARY_DFS_STACK>(
-                &mut walk,
-                &self.traversal,
-                small,
-                binary,
+        // a binary tree's (65 entries) is a third of a 4-wide tree's; the
+        // pair walk's, the smallest that holds the tree.
+        let traversal = &self.traversal;
+        if !binary {
+            nodes::<_, _, _, _, _, _, _, DFS_STACK, { WIDE_PAIR_STACK + SLACK }>(
+                &mut walk, traversal,
+            )
+        } else if small {
+            nodes::<_, _, _, _, _, _, _, BINARY_DFS_STACK, { SMALL_PAIR_STACK + SLACK }>(
+                &mut walk, traversal,
             )
         } else {
-            nodes::<_, _, _, _, _, _, _, DFS_STACK>(&mut walk, &self.traversal, small, binary)
+            nodes::<_, _, _, _, _, _, _, BINARY_DFS_STACK, { PAIR_STACK + SLACK }>(
+                &mut walk, traversal,
+            )
         }
     }
 }
 
 /// Every node of the tree once, depth first: a leaf's own pairs, and each
-/// pair of an inner node's children walked against each other. Out of
-/// line, one copy per stack size, so only the stack in use is on the
-/// caller's stack.
+/// pair of an inner node's children walked against each other on one pair
+/// stack of `M` entries, cleared once for the whole query, not once per
+/// sibling pair. Out of line, one small copy per pair of stack sizes, so
+/// that only the arrays in use are on the caller's stack (inlined together,
+/// a binary tree's small and large pair stacks took 4.3 KiB on a
+/// Cortex-M4); the walk itself is one copy for every size.
 #[inline(never)]
-fn nodes<H, T, P, X, S, K, D, const N: usize>(
+fn nodes<H, T, P, X, S, K, D, const N: usize, const M: usize>(
     walk: &mut Walk<'_, H, H, Same, T, SelfLeafPairs<'_, P, X, S, K>>,
     traversal: &PairTraversal<D>,
-    small: bool,
-    binary: bool,
 ) -> Result<(), Error>
 where
     H: Hierarchy,
@@ -442,6 +448,7 @@ where
 {
     let tree = walk.a;
     let mut nodes = Stack::<u32, N>::with(tree.root(), tree.depth());
+    let stack = &mut [(0u32, 0u32, 0u32); M];
     while let Some(n) = nodes.pop() {
         match tree.content(n) {
             Content::Leaf(ids) => {
@@ -457,7 +464,7 @@ where
                 let kids = kids.of_arity(H::ARITY);
                 for (k, &u) in kids.iter().enumerate() {
                     for &v in &kids[k + 1..] {
-                        if cross(walk, traversal, u, v, small, binary)?.is_break() {
+                        if cross(walk, traversal, u, v, stack)?.is_break() {
                             return Ok(());
                         }
                     }
@@ -471,42 +478,13 @@ where
     Ok(())
 }
 
-/// The explicit-stack walk of `u` against `v` on the smallest stack that
-/// holds the tree: out of line, one copy per size, so that only the stack in
-/// use is on the caller's stack (inlined together, a binary tree's small
-/// and large stacks took 4.3 KiB on a Cortex-M4).
-#[inline(never)]
-fn stack<H, T, L, D>(
-    walk: &mut Walk<'_, H, H, Same, T, L>,
-    rule: &D,
-    u: u32,
-    v: u32,
-    small: bool,
-    binary: bool,
-) -> Result<Flow, Error>
-where
-    H: Hierarchy,
-    T: Tally,
-    L: PairStep,
-    D: DescentRule,
-{
-    if small {
-        walk.stack_between::<D, { SMALL_PAIR_STACK + SLACK }>(rule, u, v)
-    } else if binary {
-        walk.stack_between::<D, { PAIR_STACK + SLACK }>(rule, u, v)
-    } else {
-        walk.stack_between::<D, { WIDE_PAIR_STACK + SLACK }>(rule, u, v)
-    }
-}
-
 /// Walks sibling subtrees `u` and `v` against each other with `traversal`.
 fn cross<H, T, L, D>(
     walk: &mut Walk<'_, H, H, Same, T, L>,
     traversal: &PairTraversal<D>,
     u: u32,
     v: u32,
-    small: bool,
-    binary: bool,
+    stack: &mut [PairEntry],
 ) -> Result<Flow, Error>
 where
     H: Hierarchy,
@@ -519,8 +497,8 @@ where
             let yv = walk.b_bv(v);
             Ok(walk.recurse(rule, u, v, &yv, 0))
         }
-        PairTraversal::Stack(rule) => stack(walk, rule, u, v, small, binary),
-        PairTraversal::Simultaneous => stack(walk, &Descent::Simultaneous, u, v, small, binary),
+        PairTraversal::Stack(rule) => walk.stack_in(rule, u, v, stack),
+        PairTraversal::Simultaneous => walk.stack_in(&Descent::Simultaneous, u, v, stack),
         PairTraversal::LeafDirected => walk.leaf_directed_from(u, v),
     }
 }
@@ -583,6 +561,53 @@ mod tests {
                     "{n} boxes, leaves of {leaf}, {traversal:?}"
                 );
             }
+        }
+    }
+
+    /// A tree too deep for the small pair stack (the boxes double in size,
+    /// so a split at the spatial median peels one off at a time) walks on the large one,
+    /// one array for every sibling pair, and still finds every pair.
+    #[test]
+    fn a_deep_tree_walks_on_the_large_stack_and_finds_every_pair() {
+        let mut prims = [Aabb::EMPTY; 64];
+        let mut x = 1.0f32;
+        for b in prims.iter_mut() {
+            // Each box reaches a little into the next one.
+            *b = Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(2.1 * x, 1.0, 1.0));
+            x *= 2.0;
+        }
+        let mut nodes = [Node::<Aabb>::EMPTY; 127];
+        let mut idx = [0u32; 64];
+        let tree = TopDown {
+            split: crate::SplitPoint::SpatialMedian,
+            ..TopDown::sah()
+        }
+        .with_max_leaf_size(1)
+        .build(&prims, &mut nodes, &mut idx)
+        .unwrap();
+        let depth = tree.depth();
+        assert!(
+            pair_stack_bound((2, depth), (2, depth)) > SMALL_PAIR_STACK,
+            "depth {depth} fits the small stack: the test misses the large one"
+        );
+        for traversal in [
+            PairTraversal::Stack(Descent::Larger),
+            PairTraversal::Simultaneous,
+            PairTraversal::Recursive(Descent::Larger),
+            PairTraversal::LeafDirected,
+        ] {
+            let mut got = [(0u32, 0u32); 64];
+            let mut g = 0;
+            SelfPairs::new(&tree, &prims)
+                .traversal(traversal)
+                .for_each(|i, j| {
+                    got[g] = (i.min(j), i.max(j));
+                    g += 1;
+                })
+                .unwrap();
+            got[..g].sort_unstable();
+            let want: [(u32, u32); 63] = core::array::from_fn(|i| (i as u32, i as u32 + 1));
+            assert_eq!(&got[..g], &want[..], "{traversal:?}");
         }
     }
 
