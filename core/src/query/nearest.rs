@@ -480,6 +480,47 @@ fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
 mod tests {
     use super::*;
 
+    /// The depth-first, nearer-child-first search (what `Mesh` runs) finds
+    /// what brute force finds, for points inside, near and far from a
+    /// sheet of triangles, on trees of one and of four triangles a leaf.
+    #[cfg(feature = "alloc")]
+    #[test]
+    fn nearer_first_search_equals_brute_force() {
+        use crate::tree::Node;
+        use crate::TopDown;
+        let mut tris = [Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y); 48];
+        for (i, t) in tris.iter_mut().enumerate() {
+            let o = Vec3::new((i % 8) as f32, (i / 8) as f32, ((i * 5) % 3) as f32 * 0.3);
+            *t = Triangle::new(
+                o,
+                o + Vec3::new(0.9, 0.1, 0.0),
+                o + Vec3::new(0.2, 0.8, 0.4),
+            );
+        }
+        for leaf in [1, 4] {
+            let mut nodes = [Node::<Aabb>::EMPTY; 95];
+            let mut idx = [0u32; 48];
+            let tree = TopDown::default()
+                .with_max_leaf_size(leaf)
+                .build(&tris, &mut nodes, &mut idx)
+                .unwrap();
+            for k in 0..200 {
+                let f = k as f32;
+                let p = Vec3::new(
+                    (f * 0.37) % 12.0 - 2.0,
+                    (f * 0.61) % 9.0 - 1.5,
+                    (f * 0.23) % 6.0 - 3.0,
+                ) * [1.0, 1.0, 40.0][k % 3];
+                let got = nearest_nearer_first(&tree, &tris, p).unwrap();
+                assert_eq!(
+                    got,
+                    crate::brute_force::nearest(&tris, p),
+                    "{p:?}, leaves of {leaf}"
+                );
+            }
+        }
+    }
+
     /// The square-root-free, `f32` bound never exceeds the bound it replaced,
     /// `(sqrt(d2) - m)^2` in `f64` (which the searches' brute-force tests
     /// check), for boxes and points from 1e-30 to 1e30 (beyond `f32`'s

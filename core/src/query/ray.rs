@@ -382,10 +382,8 @@ fn surely_outside(tri: &Triangle, ray: &Ray) -> bool {
     } else {
         (u, v, det)
     };
-    u < -2.0 * err_u
-        || v < -2.0 * err_v
-        || u - det > 2.0 * (err_u + err_det)
-        || (u + v) - det > 2.0 * (err_u + err_v + err_det)
+    // (`u > 1` needs no test of its own: with `v >= 0` it makes `u + v > 1`.)
+    u < -2.0 * err_u || v < -2.0 * err_v || (u + v) - det > 2.0 * (err_u + err_v + err_det)
 }
 
 fn within(t: f64, ray: &Ray) -> Option<f32> {
@@ -1013,23 +1011,27 @@ mod tests {
             s ^= s << 17;
             (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
         };
-        let (mut near, mut hits_near, mut beside, mut settled_beside) = (0, 0, 0, 0);
-        for round in 0..200_000 {
-            let scale = [1.0f32, 1e-30, 1e-3, 1e4, 1e30][round % 5];
+        let (mut near, mut hits_near) = (0, 0);
+        let (mut beside, mut settled) = ([0; 3], [0; 3]);
+        for round in 0..300_000 {
+            let scale = [1.0f32, 1e-30, 1e-3, 1e4, 1e30, 1e-13, 1e-15][round % 7];
             let centre = [Vec3::ZERO, Vec3::splat(1e4 * scale)][round % 2];
             let mut corner = || centre + Vec3::new(next(), next(), next()) * scale;
             let tri = Triangle::new(corner(), corner(), corner());
             let origin = centre + (corner() - centre) * [1.0, 3.0, 100.0][round % 3];
             // Barycentric aim: on an edge, on a corner, a hair either side of
-            // an edge, or well beside the triangle.
+            // an edge, or well beside the triangle past one of its three
+            // sides (`u < 0`, `v < 0`, `u + v > 1`).
             let (w1, w2) = (next().abs(), next().abs());
-            let (u, v) = match round % 6 {
+            let (u, v) = match round % 8 {
                 0 => (0.0, w2),
                 1 => (w1, 1.0 - w1),
                 2 => (0.0, 0.0),
                 3 => (-1e-6 * w1, w2 * 0.5),
                 4 => (w1 * 0.5, 1e-6 * w2),
-                _ => (-0.5 - w1, w2),
+                5 => (-0.5 - w1, w2 * 0.5),
+                6 => (w1 * 0.5, -0.5 - w2),
+                _ => (0.6 + 0.4 * w1, 0.6 + 0.4 * w2),
             };
             let [a, b, c] = tri.v;
             let target = a + (b - a) * u + (c - a) * v;
@@ -1044,22 +1046,54 @@ mod tests {
             );
             // Sizes whose products `f32` holds without underflow or overflow.
             let moderate = (1e-3..=1e4).contains(&scale);
-            if round % 6 == 5 && moderate {
-                beside += 1;
-                settled_beside += usize::from(rejected);
+            let side = (round % 8).checked_sub(5);
+            if let (Some(k), true) = (side, moderate) {
+                beside[k] += 1;
+                settled[k] += usize::from(rejected);
             } else if moderate {
                 near += 1;
                 hits_near += usize::from(hit);
             }
         }
-        // Rays well beside: settled in f32 but for nearly edge-on ones (at
-        // 1e-30 the products underflow, at 1e30 they overflow: left to f64).
-        assert!(
-            settled_beside * 100 > beside * 95,
-            "{settled_beside} of {beside}"
-        );
+        // Rays well beside, past each side: settled in f32 but for nearly
+        // edge-on ones (at 1e-30 the products underflow, at 1e30 they
+        // overflow: left to f64).
+        for k in 0..3 {
+            assert!(
+                settled[k] * 100 > beside[k] * 95,
+                "side {k}: {} of {}",
+                settled[k],
+                beside[k]
+            );
+        }
         // The rays at the edges hit often enough for the first check to bite.
         assert!(hits_near * 3 > near, "{hits_near} of {near}");
+    }
+
+    /// The triangle test itself: a ray through the inside hits at the right
+    /// distance with the barycentric coordinates of its aim; one past each
+    /// side, one pointing away and one in the triangle's plane miss.
+    #[test]
+    fn moller_trumbore_hits_inside_and_misses_beside() {
+        let tri = Triangle::new(
+            Vec3::ZERO,
+            Vec3::new(4.0, 0.0, 0.0),
+            Vec3::new(0.0, 4.0, 0.0),
+        );
+        let down =
+            |x: f32, y: f32| Ray::new(Vec3::new(x, y, 2.0), -Vec3::Z, f32::INFINITY).unwrap();
+        let m = moller_trumbore(&tri, &down(1.0, 2.0)).unwrap();
+        assert_eq!((m.t, m.u, m.v), (2.0, 0.25, 0.5));
+        assert!(m.det > 0.0, "from above: the front, the normal (+z) side");
+        for (x, y) in [(-0.5, 1.0), (1.0, -0.5), (3.0, 3.0)] {
+            assert!(moller_trumbore(&tri, &down(x, y)).is_none(), "({x}, {y})");
+        }
+        let away = Ray::new(Vec3::new(1.0, 1.0, 2.0), Vec3::Z, f32::INFINITY).unwrap();
+        let flat = Ray::new(Vec3::new(-1.0, 1.0, 0.0), Vec3::X, f32::INFINITY).unwrap();
+        assert!(moller_trumbore(&tri, &away).is_none());
+        assert!(moller_trumbore(&tri, &flat).is_none());
+        let short = Ray::new(Vec3::new(1.0, 2.0, 2.0), -Vec3::Z, 1.5).unwrap();
+        assert!(moller_trumbore(&tri, &short).is_none(), "past t_max");
     }
 
     /// The 4-lane slab test answers exactly like the scalar one, including
