@@ -245,8 +245,9 @@ impl Nearest {
     }
 }
 
-/// A lower bound on the squared distance from `p` to anything inside `bv`,
-/// lowered by a margin (about 1e-9 of the coordinates' size, `m`) that
+/// A query point, for lower bounds on the squared distance from it to
+/// anything inside a box, lowered by a margin (about 1e-9 of the
+/// coordinates' size, `m`) that
 /// dwarfs the `f64` rounding of the primitive distances, so no true
 /// candidate is skipped.
 ///
@@ -261,25 +262,52 @@ impl Nearest {
 /// (under `5 * 2^-24` of it: two differences, three products, two sums) is
 /// covered by taking `2^-19` off instead of `e`. Outside `f32`'s range
 /// (a sum that overflows, or squares that may have underflowed), in `f64`.
-#[inline]
-fn lower_bound<B: BoundingVolume>(bv: &B, p: DVec3) -> f64 {
+///
+/// The margin depends on the size of the coordinates only, so a search
+/// takes it once, from the root's box (every box inside is no larger, so
+/// the margin is no smaller).
+#[derive(Clone, Copy)]
+struct Probe {
+    point: Vec3,
+    p: DVec3,
+    p32: Vec3A,
+    /// `m^2 / e`, the part of the bound that depends on sizes only.
+    cut: f64,
+}
+
+impl Probe {
     const E: f64 = 1.0 / (1u64 << 20) as f64;
-    let b = bv.aabb();
-    let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
-    let p32 = Vec3A::from(p.as_vec3());
-    let g = (lo - p32).max(p32 - hi).max(Vec3A::ZERO);
-    let d2_32 = g.dot(g);
-    let d2 = if (1e-30..=f32::MAX).contains(&d2_32) {
-        f64::from(d2_32) * (1.0 - 2.0 * E)
-    } else if g == Vec3A::ZERO {
-        0.0 // inside: a difference rounds to zero only when it is zero
-    } else {
-        box_distance_squared(&b, p) * (1.0 - E)
-    };
-    let scale =
-        f64::from(p32.abs().max_element()) + f64::from(lo.abs().max(hi.abs()).max_element());
-    let m = 1e-9 * scale;
-    (d2 - m * m * (1.0 / E)).max(0.0)
+
+    #[inline]
+    fn new(p: DVec3, within: &Aabb) -> Probe {
+        let p32 = Vec3A::from(p.as_vec3());
+        let size = Vec3A::from(within.min)
+            .abs()
+            .max(Vec3A::from(within.max).abs());
+        let m = 1e-9 * (f64::from(p32.abs().max_element()) + f64::from(size.max_element()));
+        Probe {
+            point: p.as_vec3(),
+            p,
+            p32,
+            cut: m * m * (1.0 / Self::E),
+        }
+    }
+
+    /// The bound for box `b` (inside the box the probe was made for).
+    #[inline]
+    fn bound(&self, b: &Aabb) -> f64 {
+        let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
+        let g = (lo - self.p32).max(self.p32 - hi).max(Vec3A::ZERO);
+        let d2_32 = g.dot(g);
+        let d2 = if (1e-30..=f32::MAX).contains(&d2_32) {
+            f64::from(d2_32) * (1.0 - 2.0 * Self::E)
+        } else if g == Vec3A::ZERO {
+            0.0 // inside: a difference rounds to zero only when it is zero
+        } else {
+            box_distance_squared(b, self.p) * (1.0 - Self::E)
+        };
+        (d2 - self.cut).max(0.0)
+    }
 }
 
 impl<B: BoundingVolume> Bvh<'_, B> {
@@ -322,26 +350,28 @@ pub(crate) fn nearest<H: Hierarchy + ?Sized, P: PointDistance>(
     if !can_search(h, prims.len(), point)? {
         return Ok(None);
     }
-    let p = point.as_dvec3();
+    let probe = Probe::new(point.as_dvec3(), &h.bv(h.root()).aabb());
     let mut best: Option<Nearest> = None;
     let mut heap = MinHeap::<BEST_FIRST_QUEUE>::new();
     tally.bv_tests(1);
-    heap.push(lower_bound(&h.bv(h.root()), p), h.root());
+    heap.push(probe.bound(&h.bv(h.root()).aabb()), h.root());
     while let Some((bound, n)) = heap.pop() {
         if best.is_some_and(|b| bound > b.distance_squared) {
             break;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, &mut best, &mut tally),
+            Content::Leaf(here) => {
+                nearest_in_leaf(h, n, here, prims, &probe, &mut best, &mut tally)
+            }
             Content::Inner(kids) => {
                 tally.bv_tests(kids.as_slice().len() as u32);
                 for &c in kids.as_slice() {
-                    let bc = lower_bound(&h.bv(c), p);
+                    let bc = probe.bound(&h.bv(c).aabb());
                     if best.is_some_and(|b| bc > b.distance_squared) {
                         continue;
                     }
                     if !heap.push(bc, c) {
-                        nearest_depth_first(h, prims, point, c, &mut best, &mut tally)?;
+                        nearest_depth_first(h, prims, &probe, c, &mut best, &mut tally)?;
                     }
                 }
             }
@@ -366,26 +396,29 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
     if !can_search(h, prims.len(), point)? {
         return Ok(None);
     }
-    let p = point.as_dvec3();
-    let mut best: Option<Nearest> = None;
     let root = h.root();
-    let mut stack =
-        Stack::<(f64, u32), DFS_STACK>::with((lower_bound(&h.bv(root), p), root), h.depth());
+    let probe = Probe::new(point.as_dvec3(), &h.bv(root).aabb());
+    let mut best: Option<Nearest> = None;
+    let first = (probe.bound(&h.bv(root).aabb()), root);
+    let mut stack = Stack::<(f64, u32), DFS_STACK>::with(first, h.depth());
     let mut none = ();
-    while let Some((bound, n)) = stack.pop() {
+    // The node to open next: the nearer child goes straight here, not
+    // through the stack (one push and pop fewer a level).
+    let mut next = None;
+    while let Some((bound, n)) = next.take().or_else(|| stack.pop()) {
         if best.is_some_and(|b| bound > b.distance_squared) {
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, &mut best, &mut none),
+            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, &probe, &mut best, &mut none),
             Content::Inner(kids) => {
                 let kids = kids.as_slice();
                 let mut order = [(0.0f64, 0u32); crate::tree::hierarchy::MAX_CHILDREN];
                 for (slot, &c) in order.iter_mut().zip(kids) {
-                    *slot = (lower_bound(&h.bv(c), p), c);
+                    *slot = (probe.bound(&h.bv(c).aabb()), c);
                 }
                 let order = &mut order[..kids.len()];
-                // Farthest pushed first, so the nearest is opened next (two
+                // Farthest first, so the nearest is opened next (two
                 // children, a binary tree's, by one comparison).
                 if let [a, b] = order {
                     if a.0 < b.0 {
@@ -394,11 +427,14 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
                 } else {
                     order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
                 }
-                for &(bc, c) in order.iter() {
-                    if best.is_some_and(|b| bc > b.distance_squared) {
-                        continue;
+                if let Some((&nearest, farther)) = order.split_last() {
+                    for &(bc, c) in farther {
+                        if best.is_some_and(|b| bc > b.distance_squared) {
+                            continue;
+                        }
+                        stack.push((bc, c))?;
                     }
-                    stack.push((bc, c))?;
+                    next = Some(nearest);
                 }
             }
         }
@@ -425,16 +461,16 @@ fn nearest_in_leaf<H: Hierarchy + ?Sized, P: PointDistance>(
     n: u32,
     here: &[u32],
     prims: &[P],
-    point: Vec3,
+    probe: &Probe,
     best: &mut Option<Nearest>,
     tally: &mut impl Tally,
 ) {
     let kept = h.leaf_bounds(n).filter(|b| b.len() == here.len());
     tally.prim_tests(here.len() as u32);
-    let p = point.as_dvec3();
+    let point = probe.point;
     for (k, &i) in here.iter().enumerate() {
         if let (Some(b), Some(kept)) = (*best, kept) {
-            if lower_bound(&kept[k], p) > b.distance_squared {
+            if probe.bound(&kept[k]) > b.distance_squared {
                 continue;
             }
         }
@@ -452,20 +488,19 @@ fn nearest_in_leaf<H: Hierarchy + ?Sized, P: PointDistance>(
 fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
     h: &H,
     prims: &[P],
-    point: Vec3,
+    probe: &Probe,
     root: u32,
     best: &mut Option<Nearest>,
     tally: &mut impl Tally,
 ) -> Result<(), Error> {
-    let p = point.as_dvec3();
     let mut stack = Stack::<u32, DFS_STACK>::with(root, h.depth());
     while let Some(n) = stack.pop() {
         tally.bv_tests(1);
-        if best.is_some_and(|b| lower_bound(&h.bv(n), p) > b.distance_squared) {
+        if best.is_some_and(|b| probe.bound(&h.bv(n).aabb()) > b.distance_squared) {
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, point, best, tally),
+            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, probe, best, tally),
             Content::Inner(kids) => {
                 for &c in kids.as_slice().iter().rev() {
                     stack.push(c)?;
@@ -551,7 +586,7 @@ mod tests {
             let scale = pd.abs().max_element() + b.min.abs().max(b.max.abs()).max_element() as f64;
             let d = libm::sqrt(d2) - 1e-9 * scale;
             let old = if d > 0.0 { d * d } else { 0.0 };
-            let new = lower_bound(&b, pd);
+            let new = Probe::new(pd, &b).bound(&b);
             assert!(new <= old, "{b:?} {p:?}: {new} > {old}");
             assert!(
                 new >= old * (1.0 - 4e-6) - 4e-12 * scale * scale,
