@@ -565,26 +565,24 @@ mod tests {
     }
 
     /// A tree too deep for the small pair stack (the boxes double in size,
-    /// so a split at the spatial median peels one off at a time) walks on the large one,
+    /// so the binned SAH peels a few off at a time) walks on the large one,
     /// one array for every sibling pair, and still finds every pair.
     #[test]
     fn a_deep_tree_walks_on_the_large_stack_and_finds_every_pair() {
-        let mut prims = [Aabb::EMPTY; 64];
+        const N: usize = 100;
+        let mut prims = [Aabb::EMPTY; N];
         let mut x = 1.0f32;
         for b in prims.iter_mut() {
             // Each box reaches a little into the next one.
             *b = Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(2.1 * x, 1.0, 1.0));
             x *= 2.0;
         }
-        let mut nodes = [Node::<Aabb>::EMPTY; 127];
-        let mut idx = [0u32; 64];
-        let tree = TopDown {
-            split: crate::SplitPoint::SpatialMedian,
-            ..TopDown::sah()
-        }
-        .with_max_leaf_size(1)
-        .build(&prims, &mut nodes, &mut idx)
-        .unwrap();
+        let mut nodes = [Node::<Aabb>::EMPTY; 2 * N - 1];
+        let mut idx = [0u32; N];
+        let tree = TopDown::sah()
+            .with_max_leaf_size(1)
+            .build(&prims, &mut nodes, &mut idx)
+            .unwrap();
         let depth = tree.depth();
         assert!(
             pair_stack_bound((2, depth), (2, depth)) > SMALL_PAIR_STACK,
@@ -596,7 +594,7 @@ mod tests {
             PairTraversal::Recursive(Descent::Larger),
             PairTraversal::LeafDirected,
         ] {
-            let mut got = [(0u32, 0u32); 64];
+            let mut got = [(0u32, 0u32); N];
             let mut g = 0;
             SelfPairs::new(&tree, &prims)
                 .traversal(traversal)
@@ -606,7 +604,7 @@ mod tests {
                 })
                 .unwrap();
             got[..g].sort_unstable();
-            let want: [(u32, u32); 63] = core::array::from_fn(|i| (i as u32, i as u32 + 1));
+            let want: [(u32, u32); N - 1] = core::array::from_fn(|i| (i as u32, i as u32 + 1));
             assert_eq!(&got[..g], &want[..], "{traversal:?}");
         }
     }
