@@ -73,6 +73,19 @@ mod stats;
 pub mod transform;
 pub mod tree;
 
+/// A small xorshift source of floats in [-1, 1), for the unit tests' random
+/// scenes (one generator, so every test draws the same kind of numbers).
+#[cfg(test)]
+pub(crate) fn test_floats(seed: u64) -> impl FnMut() -> f32 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+    }
+}
+
 pub use builders::{AxisChoice, BuildReport, OnFailure, Partition, SplitPoint, Stop, TopDown};
 #[cfg(feature = "sphere")]
 pub use bv::Sphere;

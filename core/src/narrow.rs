@@ -634,13 +634,7 @@ mod tests {
     /// outside them, through a corner, degenerate, at scales 1e-3 to 1e4.
     #[test]
     fn box_triangle_matches_its_definition() {
-        let mut s = 0x51ce_b0a7_d00d_f00du64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut next = crate::test_floats(0x51ce_b0a7_d00d_f00d);
         let reference = |b: &Aabb, t: &Triangle| {
             let c = |k: usize| {
                 Vec3::new(

@@ -563,13 +563,7 @@ mod tests {
     /// nearly as well (within a few millionths of the distance squared).
     #[test]
     fn the_fast_bound_stays_under_the_square_root_bound() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut next = crate::test_floats(0x9e37_79b9_7f4a_7c15);
         for round in 0..100_000 {
             let scale = [1.0f32, 1e-30, 1e-3, 1e5, 1e19, 1e30][round % 6];
             let (x, y) = (

@@ -1004,13 +1004,7 @@ mod tests {
     /// settles nearly all the rays that pass well beside the triangle.
     #[test]
     fn the_f32_filter_rejects_only_what_the_f64_test_rejects() {
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut next = crate::test_floats(0x2545_f491_4f6c_dd1d);
         let (mut near, mut hits_near) = (0, 0);
         let (mut beside, mut settled) = ([0; 3], [0; 3]);
         for round in 0..300_000 {
@@ -1101,13 +1095,7 @@ mod tests {
     /// flat boxes and huge coordinates.
     #[test]
     fn four_lane_slab_equals_the_scalar_slab() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut next = crate::test_floats(0x9e37_79b9_7f4a_7c15);
         let mut checked = 0;
         for round in 0..20_000 {
             let scale = [1.0f32, 1e-3, 1e5, 1e30][round % 4];
@@ -1157,22 +1145,11 @@ mod tests {
         assert!(checked > 1000, "too few hits to mean anything: {checked}");
     }
 
-    /// A small xorshift source of floats in [-1, 1).
-    fn floats(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        }
-    }
-
     /// The shared per-ray test answers like the general one's four-lane
     /// form, lane by lane, and its four-lane form like its one-box form.
     #[test]
     fn probe_four_lanes_equal_one_box() {
-        let mut next = floats(0x1234_5678_9abc_def1);
+        let mut next = crate::test_floats(0x1234_5678_9abc_def1);
         let (mut fast, mut hits) = (0, 0);
         for round in 0..20_000 {
             let scale = [1.0f32, 1e-3, 1e5, 1e30][round % 4];
@@ -1219,7 +1196,7 @@ mod tests {
     /// or far.
     #[test]
     fn probe_never_rejects_a_box_the_ray_enters() {
-        let mut next = floats(0x0dd_ba11_cafe_f00d);
+        let mut next = crate::test_floats(0x0dd_ba11_cafe_f00d);
         let mut fast = 0;
         for round in 0..50_000 {
             let scale = [1.0f32, 1e-4, 1e3, 1e6][round % 4];
@@ -1272,7 +1249,7 @@ mod tests {
     /// from its exit. Such a box must still be entered, by `t` at the latest.
     #[test]
     fn probe_keeps_boxes_the_ray_only_touches() {
-        let mut next = floats(0xfeed_beef_1357_9bdf);
+        let mut next = crate::test_floats(0xfeed_beef_1357_9bdf);
         let grid = |x: f32, step: f32| (x / step).round() * step;
         let (mut point_boxes, mut checked) = (0, 0);
         for round in 0..50_000 {
