@@ -64,6 +64,16 @@ fn main() {
         let turn = Quat::from_rotation_y(0.02) * Quat::from_rotation_x(0.01);
         let motion = Rigid::new(turn, shift).expect("motion");
         let va = ta.view();
+        let mut moved = Counts::default();
+        Pairs::new(&va, &boxes_a, &va, &boxes_a)
+            .in_frame(motion)
+            .counted(&mut moved)
+            .count()
+            .expect("query");
+        println!(
+            "B moved: Nv {} Np {} Nu {}",
+            moved.bv_tests, moved.prim_tests, moved.updates
+        );
         let (t, m) = median_time(runs, || {
             Pairs::new(&va, &boxes_a, &va, &boxes_a)
                 .in_frame(motion)

@@ -61,6 +61,47 @@ pub trait DescentRule {
     fn wants_children(&self) -> bool {
         false
     }
+
+    /// The choice when the rule reads nothing but the depth (A first,
+    /// B first, simultaneous, alternate), so that the traversal need not
+    /// fetch the two volumes, nor move B's for a moved tree B. `None`
+    /// (the default) when the rule reads the volumes; when it is `Some`, it
+    /// must equal [`choose`](Self::choose) at that depth.
+    ///
+    /// ```
+    /// use bvhkit::glam::{Quat, Vec3};
+    /// use bvhkit::{Aabb, BoundingVolume, Counts, Decision, DescentRule, Node, Open, Pairs, Rigid, TopDown, Triangle};
+    /// /// Both sides at every step; the second also says so by depth.
+    /// struct Both;
+    /// struct BothByDepth;
+    /// impl DescentRule for Both {
+    ///     fn choose<B: BoundingVolume>(&self, _: &Decision<'_, B>) -> Open { Open::Both }
+    /// }
+    /// impl DescentRule for BothByDepth {
+    ///     fn choose<B: BoundingVolume>(&self, _: &Decision<'_, B>) -> Open { Open::Both }
+    ///     fn by_depth(&self, _: u32) -> Option<Open> { Some(Open::Both) }
+    /// }
+    /// let tris: Vec<Triangle> = (0..64).map(|i| {
+    ///     let o = Vec3::new(i as f32 * 0.5, 0.0, 0.0);
+    ///     Triangle::new(o, o + Vec3::X, o + Vec3::Y)
+    /// }).collect();
+    /// let mut nodes = vec![Node::<Aabb>::EMPTY; bvhkit::max_nodes(64)];
+    /// let mut idx = vec![0u32; 64];
+    /// let tree = TopDown::default().build(&tris, &mut nodes, &mut idx)?;
+    /// let motion = Rigid::new(Quat::from_rotation_z(0.1), Vec3::new(0.2, 0.1, 0.0))?;
+    /// let (mut looked, mut blind) = (Counts::default(), Counts::default());
+    /// let pairs = || Pairs::new(&tree, &tris, &tree, &tris).in_frame(motion);
+    /// let n = pairs().descent(Both).counted(&mut looked).count()?;
+    /// assert_eq!(pairs().descent(BothByDepth).counted(&mut blind).count()?, n);
+    /// // Same pairs and tests; fewer of B's volumes moved (Nu).
+    /// assert_eq!(blind.bv_tests, looked.bv_tests);
+    /// assert!(blind.updates < looked.updates);
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
+    fn by_depth(&self, depth: u32) -> Option<Open> {
+        let _ = depth;
+        None
+    }
 }
 
 /// The descent rules of the lectures. Every rule finds the same pairs; they
@@ -141,25 +182,28 @@ impl Descent {
 impl DescentRule for Descent {
     #[inline]
     fn choose<B: BoundingVolume>(&self, d: &Decision<'_, B>) -> Open {
-        match self {
-            Descent::AFirst => Open::A,
-            Descent::BFirst => Open::B,
-            Descent::Larger => larger(d),
-            Descent::Simultaneous => Open::Both,
-            Descent::Alternate => {
-                if d.depth % 2 == 0 {
-                    Open::A
-                } else {
-                    Open::B
-                }
-            }
-            Descent::Overlap => by_overlap(d),
+        match self.by_depth(d.depth) {
+            Some(open) => open,
+            None if *self == Descent::Overlap => by_overlap(d),
+            None => larger(d),
         }
     }
 
     #[inline]
     fn wants_children(&self) -> bool {
         *self == Descent::Overlap
+    }
+
+    #[inline]
+    fn by_depth(&self, depth: u32) -> Option<Open> {
+        match self {
+            Descent::AFirst => Some(Open::A),
+            Descent::BFirst => Some(Open::B),
+            Descent::Simultaneous => Some(Open::Both),
+            Descent::Alternate if depth % 2 == 0 => Some(Open::A),
+            Descent::Alternate => Some(Open::B),
+            Descent::Larger | Descent::Overlap => None,
+        }
     }
 }
 
@@ -251,6 +295,15 @@ impl<N: DescentRule, F: DescentRule> DescentRule for DepthSwitch<N, F> {
     fn wants_children(&self) -> bool {
         self.near.wants_children() || self.far.wants_children()
     }
+
+    #[inline]
+    fn by_depth(&self, depth: u32) -> Option<Open> {
+        if depth < self.depth {
+            self.near.by_depth(depth)
+        } else {
+            self.far.by_depth(depth)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -280,5 +333,49 @@ mod tests {
         assert_eq!(Descent::Larger.choose(&d(&thin, &cube)), Open::B);
         // A full tie opens A, as before.
         assert_eq!(Descent::Larger.choose(&d(&big, &big)), Open::A);
+    }
+
+    /// A rule that answers by depth alone must answer as `choose` does,
+    /// whatever the volumes; rules that read the volumes answer `None`.
+    #[test]
+    fn by_depth_agrees_with_choose() {
+        let mut next = crate::test_floats(7);
+        let mut boxes = || {
+            let c = Vec3::new(next(), next(), next()) * 10.0;
+            let h = Vec3::new(next(), next(), next()).abs() * 3.0;
+            Aabb::new(c - h, c + h)
+        };
+        let switch = DepthSwitch {
+            depth: 3,
+            near: Descent::Simultaneous,
+            far: Descent::Larger,
+        };
+        for depth in 0..8 {
+            for _ in 0..20 {
+                let (a, b) = (boxes(), boxes());
+                let d = Decision {
+                    a: &a,
+                    b: &b,
+                    a_children: None,
+                    b_children: None,
+                    depth,
+                };
+                for rule in Descent::ALL {
+                    let reads_volumes = matches!(rule, Descent::Larger | Descent::Overlap);
+                    match rule.by_depth(depth) {
+                        Some(open) => assert_eq!(open, rule.choose(&d), "{rule:?} at {depth}"),
+                        None => assert!(reads_volumes, "{rule:?} at {depth}"),
+                    }
+                    assert_eq!(rule.by_depth(depth).is_none(), reads_volumes);
+                }
+                let by_depth = switch.by_depth(depth);
+                assert_eq!(by_depth.is_some(), depth < 3);
+                if let Some(open) = by_depth {
+                    assert_eq!(open, switch.choose(&d));
+                }
+            }
+        }
+        assert_eq!(Descent::Alternate.by_depth(4), Some(Open::A));
+        assert_eq!(Descent::Alternate.by_depth(5), Some(Open::B));
     }
 }
