@@ -1,6 +1,8 @@
 //! `bvhkit bake` writes a file that opens in place and answers as the tree
-//! it came from; an empty mesh bakes to the 32-byte header alone.
+//! it came from (binary or, with `--wide`, 4-wide); an empty mesh bakes to
+//! the 32-byte header alone.
 
+use bvhkit::layout::Wide;
 use bvhkit::{Aabb, Bvh, Pairs, TopDown};
 use std::process::Command;
 
@@ -49,6 +51,46 @@ fn baked_files_open_and_answer_as_the_tree() {
         assert_eq!(tree.nodes(), built.view().nodes());
         let count = |t: &Bvh<'_, Aabb>| Pairs::new(t, &tris, t, &tris).exact().count().unwrap();
         assert_eq!(count(&tree), count(&built.view()));
+    }
+    // The 4-wide layout, with and without kept bounds: opens in place from
+    // 64-byte aligned memory and answers as the binary tree.
+    let built = bvhkit_std::OwnedBvh::<Aabb>::build(&TopDown::default(), &tris).unwrap();
+    let want = Pairs::new(&built.view(), &tris, &built.view(), &tris)
+        .exact()
+        .count()
+        .unwrap();
+    for kept in [false, true] {
+        let out = dir.join(format!("rock-wide-{kept}.bvhk"));
+        let mut args = vec![
+            "bake",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--wide",
+        ];
+        if kept {
+            args.push("--leaf-bounds");
+        }
+        let text = run(&args);
+        assert!(text.contains("opened and validated again"), "{text}");
+        let bytes = std::fs::read(&out).unwrap();
+        let mut store = Box::new(bvhkit::baked::Aligned([0u8; 1 << 16]));
+        store.0[..bytes.len()].copy_from_slice(&bytes);
+        let bytes = &store.0[..bytes.len()];
+        let mut seen = vec![0u32; Wide::baked_seen_words(bytes).unwrap()];
+        let wide = Wide::from_baked(bytes, &mut seen).unwrap();
+        assert_eq!(wide.leaf_bounds().is_some(), kept);
+        assert!(
+            text.contains(&format!("records {}\n", wide.records().len())),
+            "{text}"
+        );
+        assert_eq!(
+            Pairs::new(&wide, &tris, &wide, &tris)
+                .exact()
+                .count()
+                .unwrap(),
+            want
+        );
     }
     // An empty scene is not bad input: a header and nothing else.
     let empty = dir.join("empty.obj");

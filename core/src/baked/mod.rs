@@ -16,7 +16,7 @@
 //! |---|---|---|
 //! | 0 | 4 | magic, the ASCII bytes `BVHK` |
 //! | 4 | 4 | version, 1 |
-//! | 8 | 4 | kind: 1 = binary tree of axis-aligned boxes |
+//! | 8 | 4 | kind: 1 = binary tree of axis-aligned boxes; 2 = 4-wide records ([`Wide`](crate::layout::Wide), see below) |
 //! | 12 | 4 | node count `n` |
 //! | 16 | 4 | primitive count `p` (entries of the index array) |
 //! | 20 | 4 | depth (edges from the root to the deepest leaf) |
@@ -35,6 +35,28 @@
 //! field equal to the depth found. No byte string makes it panic or read out
 //! of bounds. Whether the tree was built over *your* primitives it cannot
 //! know: [`Bvh::validate`] checks that, given them.
+//!
+//! # Kind 2: a 4-wide tree
+//!
+//! A [`Wide`](crate::layout::Wide) layout (feature `layouts`) bakes with
+//! the same header, kind 2, the record count in place of the node count.
+//! Its records are 64-byte aligned, so they start at byte 64 (bytes 32 to
+//! 63 are zero); each is 128 bytes, as [`WideNode`](crate::layout::WideNode)
+//! lays them out: the four slots' `min.x`, then `min.y`, `min.z`, `max.x`,
+//! `max.y`, `max.z` (four `f32` each), then four `u32` links and four `u32`
+//! counts (`2^31 + c` for an internal slot whose record has `c` slots in
+//! use, the primitive count of a leaf, `u32::MAX` for an unused slot). The
+//! index array and the optional bounds follow as in kind 1.
+//! [`Wide::from_baked`](crate::layout::Wide::from_baked) checks the same
+//! things in the wide form: every record reached once, from a slot of an
+//! earlier record; used slots first in each record, as many as the slot
+//! that opens the record says; every box finite and inside its parent slot's
+//! box; every primitive in exactly one leaf.
+
+#[cfg(feature = "layouts")]
+mod wide;
+#[cfg(feature = "layouts")]
+pub use wide::wide_baked_len;
 
 use crate::builders::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
@@ -48,8 +70,10 @@ pub const MAGIC: [u8; 4] = *b"BVHK";
 pub const VERSION: u32 = 1;
 /// Bytes before the node array.
 pub const HEADER_BYTES: usize = 32;
-/// The only kind so far: a binary tree of [`Aabb`] nodes.
+/// Kind 1: a binary tree of [`Aabb`] nodes.
 const KIND_AABB_BINARY: u32 = 1;
+/// Kind 2: a 4-wide tree of [`WideNode`](crate::layout::WideNode) records.
+const KIND_WIDE: u32 = 2;
 /// Flag bit: the primitives' bounds follow the indices.
 const FLAG_LEAF_BOUNDS: u32 = 1;
 
@@ -59,15 +83,16 @@ const BOX_BYTES: usize = 24;
 const _: () = assert!(size_of::<Node<Aabb>>() == NODE_BYTES && align_of::<Node<Aabb>>() == 4);
 const _: () = assert!(size_of::<Aabb>() == BOX_BYTES && align_of::<Aabb>() == 4);
 
-/// Bytes with the alignment a baked tree needs (4; 32 keeps each node in one
-/// cache line). `include_bytes!` gives bytes aligned to 1, so wrap them:
+/// Bytes with the alignment a baked tree needs (4 for a binary tree, 64
+/// for the records of a 4-wide one; 64 also keeps each node in one cache
+/// line). `include_bytes!` gives bytes aligned to 1, so wrap them:
 ///
 /// ```
 /// use bvhkit::baked::Aligned;
 /// static TREE: &Aligned<[u8]> = &Aligned([0u8; 32]); // include_bytes!("tree.bin") in a firmware
-/// assert_eq!(TREE.0.as_ptr() as usize % 32, 0);
+/// assert_eq!(TREE.0.as_ptr() as usize % 64, 0);
 /// ```
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 #[derive(Debug)]
 pub struct Aligned<T: ?Sized>(pub T);
 
@@ -87,8 +112,24 @@ pub const fn baked_len(nodes: usize, primitives: usize, leaf_bounds: bool) -> us
         .saturating_add(primitives.saturating_mul(per_primitive))
 }
 
+/// What a kind of tree puts after the header: its number in the kind
+/// field, where its records start and how long each is.
+struct Kind {
+    id: u32,
+    first: usize,
+    record: usize,
+}
+
+/// Kind 1: [`Node<Aabb>`] records right after the header.
+const BINARY: Kind = Kind {
+    id: KIND_AABB_BINARY,
+    first: HEADER_BYTES,
+    record: NODE_BYTES,
+};
+
 /// The header fields, checked against the length of the bytes.
 struct Header {
+    /// Records (nodes of a binary tree).
     nodes: usize,
     primitives: usize,
     depth: u32,
@@ -108,7 +149,7 @@ fn word(bytes: &[u8], at: usize) -> u32 {
 }
 
 impl Header {
-    fn read(bytes: &[u8]) -> Result<Header, Error> {
+    fn read(bytes: &[u8], kind: &Kind) -> Result<Header, Error> {
         if bytes.len() < HEADER_BYTES {
             return Err(bad(bytes.len(), "shorter than the 32-byte header"));
         }
@@ -118,8 +159,11 @@ impl Header {
         if word(bytes, 4) != VERSION {
             return Err(bad(4, "a format version this crate does not read"));
         }
-        if word(bytes, 8) != KIND_AABB_BINARY {
-            return Err(bad(8, "a tree kind this crate does not read"));
+        match word(bytes, 8) {
+            k if k == kind.id => {}
+            KIND_AABB_BINARY => return Err(bad(8, "a binary tree: open it with Bvh::from_baked")),
+            KIND_WIDE => return Err(bad(8, "a 4-wide tree: open it with Wide::from_baked")),
+            _ => return Err(bad(8, "a tree kind this crate does not read")),
         }
         let flags = word(bytes, 24);
         if flags & !FLAG_LEAF_BOUNDS != 0 {
@@ -138,15 +182,86 @@ impl Header {
         let per_primitive = if h.leaf_bounds { 4 + BOX_BYTES } else { 4 };
         let want = h
             .nodes
-            .checked_mul(NODE_BYTES)
+            .checked_mul(kind.record)
             .zip(h.primitives.checked_mul(per_primitive))
             .and_then(|(n, p)| n.checked_add(p))
-            .and_then(|np| np.checked_add(HEADER_BYTES));
+            .and_then(|np| np.checked_add(kind.first));
         if want != Some(bytes.len()) {
             return Err(bad(12, "the counts do not match the length of the bytes"));
         }
+        // Between the header and the records: padding, zero.
+        if let Some(at) = (HEADER_BYTES..kind.first).find(|&at| bytes[at] != 0) {
+            return Err(bad(at, "the padding before the records is not zero"));
+        }
         Ok(h)
     }
+
+    /// The record array, the index array and the kept bounds of `bytes`
+    /// (whose header this is), read in place.
+    fn arrays<'a, R: Plain>(&self, bytes: &'a [u8], kind: &Kind) -> Result<Arrays<'a, R>, Error> {
+        if cfg!(target_endian = "big") {
+            return Err(bad(
+                0,
+                "baked trees open in place on little-endian targets only",
+            ));
+        }
+        // `read` checked the length: every range is in bounds.
+        let indices_at = kind.first + self.nodes * kind.record;
+        let bounds_at = indices_at + self.primitives * 4;
+        Ok((
+            cast(&bytes[kind.first..indices_at], kind.first)?,
+            cast(&bytes[indices_at..bounds_at], indices_at)?,
+            cast(&bytes[bounds_at..], bounds_at)?,
+        ))
+    }
+}
+
+/// A baked tree's arrays: its records, its index array, its kept bounds
+/// (empty when it keeps none).
+type Arrays<'a, R> = (&'a [R], &'a [u32], &'a [Aabb]);
+
+/// Writes the words of a baked tree: the header, zero padding up to the
+/// records, each record's words, the indices and the kept bounds. `out`
+/// holds exactly the bytes the counts say (the caller checked).
+fn write(
+    out: &mut [u8],
+    kind: &Kind,
+    records: impl IntoIterator<Item = u32>,
+    counts: (usize, usize, usize),
+    indices: &[u32],
+    kept: Option<&[Aabb]>,
+) -> Result<(), Error> {
+    let count = |n: usize| u32::try_from(n).map_err(|_| Error::IndexOverflow { count: n });
+    let header = [
+        u32::from_le_bytes(MAGIC),
+        VERSION,
+        kind.id,
+        count(counts.0)?,
+        count(counts.1)?,
+        count(counts.2)?,
+        if kept.is_some() { FLAG_LEAF_BOUNDS } else { 0 },
+        0,
+    ];
+    let mut words = out.chunks_exact_mut(4);
+    let mut put = |w: u32| {
+        if let Some(slot) = words.next() {
+            slot.copy_from_slice(&w.to_le_bytes());
+        }
+    };
+    header.into_iter().for_each(&mut put);
+    (HEADER_BYTES..kind.first).step_by(4).for_each(|_| put(0));
+    records.into_iter().for_each(&mut put);
+    indices.iter().copied().for_each(&mut put);
+    for b in kept.unwrap_or(&[]) {
+        box_words(b).into_iter().for_each(&mut put);
+    }
+    Ok(())
+}
+
+/// A box as six words: `min.xyz`, `max.xyz`.
+fn box_words(b: &Aabb) -> [u32; 6] {
+    let (lo, hi) = (b.min, b.max);
+    [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].map(f32::to_bits)
 }
 
 /// Types whose every bit pattern is a valid value, with no padding bytes.
@@ -176,10 +291,11 @@ unsafe impl Plain for Node<Aabb> {}
 /// `T` or not a whole number of them.
 fn cast<T: Plain>(bytes: &[u8], offset: usize) -> Result<&[T], Error> {
     if (bytes.as_ptr() as usize) % align_of::<T>() != 0 {
-        return Err(bad(
-            offset,
-            "not 4-byte aligned in memory (wrap the bytes in baked::Aligned)",
-        ));
+        let what = match align_of::<T>() {
+            4 => "not 4-byte aligned in memory (wrap the bytes in baked::Aligned)",
+            _ => "not 64-byte aligned in memory (wrap the bytes in baked::Aligned)",
+        };
+        return Err(bad(offset, what));
     }
     if bytes.len() % size_of::<T>() != 0 {
         return Err(bad(offset, "an array of partial records"));
@@ -249,40 +365,19 @@ impl<'a> Bvh<'a, Aabb> {
                 available: out.len(),
             });
         }
-        let indices = self.indices();
-        let count = |n: usize| u32::try_from(n).map_err(|_| Error::IndexOverflow { count: n });
-        let kept = self.leaf_bounds();
-        let header = [
-            u32::from_le_bytes(MAGIC),
-            VERSION,
-            KIND_AABB_BINARY,
-            count(self.node_count())?,
-            count(indices.len())?,
-            count(self.depth())?,
-            if kept.is_some() { FLAG_LEAF_BOUNDS } else { 0 },
-            0,
-        ];
-        // `out` holds `len` bytes (checked above): every write is in range.
-        let mut words = out[..len].chunks_exact_mut(4);
-        let mut put = |w: u32| {
-            if let Some(slot) = words.next() {
-                slot.copy_from_slice(&w.to_le_bytes());
-            }
-        };
-        let boxes = |b: &Aabb| {
-            let (lo, hi) = (b.min, b.max);
-            [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].map(f32::to_bits)
-        };
-        header.into_iter().for_each(&mut put);
-        for n in self.nodes() {
-            boxes(&n.bv).into_iter().for_each(&mut put);
-            put(n.first);
-            put(n.count);
-        }
-        indices.iter().copied().for_each(&mut put);
-        for b in kept.unwrap_or(&[]) {
-            boxes(b).into_iter().for_each(&mut put);
-        }
+        let nodes = self
+            .nodes()
+            .iter()
+            .flat_map(|n| box_words(&n.bv).into_iter().chain([n.first, n.count]));
+        let counts = (self.node_count(), self.indices().len(), self.depth());
+        write(
+            &mut out[..len],
+            &BINARY,
+            nodes,
+            counts,
+            self.indices(),
+            self.leaf_bounds(),
+        )?;
         Ok(len)
     }
 
@@ -300,19 +395,8 @@ impl<'a> Bvh<'a, Aabb> {
     /// assert!(matches!(Bvh::from_baked(&not_a_tree.0, &mut seen), Err(Error::BadBake { offset: 0, .. })));
     /// ```
     pub fn from_baked(bytes: &'a [u8], seen: &mut [u32]) -> Result<Self, Error> {
-        let h = Header::read(bytes)?;
-        if cfg!(target_endian = "big") {
-            return Err(bad(
-                0,
-                "baked trees open in place on little-endian targets only",
-            ));
-        }
-        let nodes_at = HEADER_BYTES;
-        let indices_at = nodes_at + h.nodes * NODE_BYTES;
-        let bounds_at = indices_at + h.primitives * 4;
-        let nodes: &[Node<Aabb>] = cast(&bytes[nodes_at..indices_at], nodes_at)?;
-        let indices: &[u32] = cast(&bytes[indices_at..bounds_at], indices_at)?;
-        let bounds: &[Aabb] = cast(&bytes[bounds_at..], bounds_at)?;
+        let h = Header::read(bytes, &BINARY)?;
+        let (nodes, indices, bounds) = h.arrays::<Node<Aabb>>(bytes, &BINARY)?;
         let depth = check(nodes, indices, bounds, seen)?;
         if depth != h.depth as usize {
             return Err(bad(20, "the depth field differs from the tree's depth"));
@@ -331,7 +415,7 @@ impl<'a> Bvh<'a, Aabb> {
     /// (from their header), so a host can size it; a firmware knows its
     /// counts and uses [`Bvh::seen_words`] in a `const`.
     pub fn baked_seen_words(bytes: &[u8]) -> Result<usize, Error> {
-        let h = Header::read(bytes)?;
+        let h = Header::read(bytes, &BINARY)?;
         Ok(Bvh::<Aabb>::seen_words(h.nodes, h.primitives))
     }
 }

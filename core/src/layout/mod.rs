@@ -27,7 +27,7 @@ mod implicit;
 mod preorder;
 mod quantized;
 mod trinode;
-mod wide;
+pub(crate) mod wide;
 
 pub use implicit::{Implicit, Slot};
 pub use preorder::{FarLink, Offset, PreNode, Preorder, ESCAPE, LEAF_BIAS};
@@ -57,6 +57,19 @@ impl<'a> Leaves<'a> {
             indices: bvh.indices(),
             bounds: bvh.leaf_bounds().unwrap_or(&[]),
         }
+    }
+
+    pub(crate) fn new(indices: &'a [u32], bounds: &'a [Aabb]) -> Self {
+        Leaves { indices, bounds }
+    }
+
+    pub(crate) fn indices(&self) -> &'a [u32] {
+        self.indices
+    }
+
+    /// The kept bounds, if any.
+    pub(crate) fn kept(&self) -> Option<&'a [Aabb]> {
+        (!self.bounds.is_empty()).then_some(self.bounds)
     }
 
     /// The ids of the leaf whose run starts at `first`.

@@ -7,9 +7,9 @@ use crate::Error;
 use glam::Vec3;
 
 /// Marks a slot no child occupies.
-const UNUSED: u32 = u32::MAX;
+pub(crate) const UNUSED: u32 = u32::MAX;
 /// Flag of an internal child; the low bits hold its number of children.
-const INNER: u32 = 1 << 31;
+pub(crate) const INNER: u32 = 1 << 31;
 
 /// One 4-wide record: the boxes of up to four children as a structure of
 /// arrays (all four `min.x` together, and so on), so a traversal that opens
@@ -20,9 +20,9 @@ const INNER: u32 = 1 << 31;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct WideNode {
-    boxes: Boxes4,
-    child: [u32; MAX_CHILDREN],
-    count: [u32; MAX_CHILDREN],
+    pub(crate) boxes: Boxes4,
+    pub(crate) child: [u32; MAX_CHILDREN],
+    pub(crate) count: [u32; MAX_CHILDREN],
 }
 
 impl WideNode {
@@ -148,6 +148,35 @@ impl<'a> Wide<'a> {
     /// The records; record 0 holds the root.
     pub fn records(&self) -> &'a [WideNode] {
         self.records
+    }
+
+    /// The layout over checked parts (a baked tree's, once
+    /// [`from_baked`](Self::from_baked) has checked them), its depth
+    /// measured here.
+    pub(crate) fn from_checked(
+        records: &'a [WideNode],
+        indices: &'a [u32],
+        bounds: &'a [Aabb],
+        nodes: usize,
+    ) -> Result<Self, Error> {
+        let mut wide = Wide {
+            records,
+            leaves: Leaves::new(indices, bounds),
+            depth: 0,
+            nodes: nodes as u32,
+        };
+        wide.depth = measure_depth(&wide)? as u32;
+        Ok(wide)
+    }
+
+    /// The index array the leaves name runs of.
+    pub fn indices(&self) -> &'a [u32] {
+        self.leaves.indices()
+    }
+
+    /// The primitives' bounds in index order, when the tree keeps them.
+    pub fn leaf_bounds(&self) -> Option<&'a [Aabb]> {
+        self.leaves.kept()
     }
 
     /// The view of `records`, which [`from_bvh`](Self::from_bvh) wrote

@@ -5,7 +5,7 @@ use crate::bv::BoundingVolume;
 use crate::primitive::Primitive;
 use crate::Error;
 
-fn test_and_set(seen: &mut [u32], i: usize) -> bool {
+pub(crate) fn test_and_set(seen: &mut [u32], i: usize) -> bool {
     let (w, b) = (i / 32, 1u32 << (i % 32));
     let was = seen[w] & b != 0;
     seen[w] |= b;

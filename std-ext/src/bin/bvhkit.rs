@@ -248,6 +248,11 @@ enum Command {
         /// triangle): pair queries then never read a triangle to test it.
         #[arg(long)]
         leaf_bounds: bool,
+        /// Bake the 4-wide layout (kind 2: 128-byte records, 64-byte
+        /// aligned; open it with `Wide::from_baked`) instead of the binary
+        /// tree.
+        #[arg(long)]
+        wide: bool,
     },
     /// Draw the book's figures (SVG, computed by the library itself) into
     /// the book's figures folder, or check the committed ones against what
@@ -332,6 +337,7 @@ fn main() -> ExitCode {
             mesh,
             out,
             leaf_bounds,
+            wide,
         } => {
             let tris = match &mesh {
                 Some(p) => match bvhkit_std::mesh::load(p) {
@@ -343,7 +349,7 @@ fn main() -> ExitCode {
                 },
                 None => bvhkit_std::scene::rock(6, 1),
             };
-            match bake(&tris, &out, leaf_bounds) {
+            match bake(&tris, &out, leaf_bounds, wide) {
                 Ok(text) => {
                     print!("{text}");
                     ExitCode::SUCCESS
@@ -879,9 +885,78 @@ fn spinner(message: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// `bvhkit bake --wide`: collapses `tree` to 4-wide records, bakes and
+/// writes them, reads the file back into 64-byte aligned memory and opens
+/// it as a device would, then checks every leaf's box against its
+/// triangles; returns the report.
+fn bake_wide(
+    tris: &[bvhkit::Triangle],
+    tree: &bvhkit::Bvh<'_, bvhkit::Aabb>,
+    out: &std::path::Path,
+) -> Result<String, String> {
+    use bvhkit::layout::{Wide, WideNode};
+    use bvhkit::{BoundingVolume, Content, Hierarchy, Primitive};
+    let err = |e: bvhkit::Error| format!("{}: {e}", out.display());
+    let mut records = vec![WideNode::ZERO; Wide::records_needed(tree).map_err(err)?];
+    let wide = Wide::from_bvh(tree, &mut records).map_err(err)?;
+    let mut bytes = vec![0u8; wide.baked_len()];
+    wide.bake(&mut bytes).map_err(err)?;
+    std::fs::write(out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    let back = std::fs::read(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    // The records need a 64-byte boundary, which a `Vec<u8>` does not
+    // promise: copy the bytes to one inside a slightly larger buffer.
+    let mut store = vec![0u8; back.len() + 64];
+    let at = store.as_ptr().align_offset(64).min(64);
+    store[at..at + back.len()].copy_from_slice(&back);
+    let aligned = &store[at..at + back.len()];
+    let mut seen = vec![0u32; Wide::baked_seen_words(aligned).map_err(err)?];
+    let opened = Wide::from_baked(aligned, &mut seen).map_err(err)?;
+    if opened.primitive_count() != tris.len() {
+        return Err(format!("{}: not a tree of this mesh", out.display()));
+    }
+    // Every leaf's box holds its triangles (the structure was checked on opening).
+    let mut stack = if opened.is_empty() {
+        vec![]
+    } else {
+        vec![opened.root()]
+    };
+    while let Some(n) = stack.pop() {
+        match opened.content(n) {
+            Content::Inner(kids) => stack.extend_from_slice(kids.as_slice()),
+            Content::Leaf(ids) => {
+                let b = opened.bv(n);
+                if !ids
+                    .iter()
+                    .all(|&i| b.contains_aabb(&tris[i as usize].bounds()))
+                {
+                    return Err(format!(
+                        "{}: a leaf does not hold its triangles",
+                        out.display()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(format!(
+        "triangles {}\nrecords {}\nnodes {}\ndepth {}\nbytes {}\nbytes per triangle {:.1}\nwritten {} (opened and validated again)\n",
+        tris.len(),
+        opened.records().len(),
+        opened.node_count(),
+        opened.depth(),
+        back.len(),
+        back.len() as f64 / tris.len().max(1) as f64,
+        out.display()
+    ))
+}
+
 /// `bvhkit bake`: builds, bakes, writes, reads the file back and opens it
 /// as a device would; returns the report.
-fn bake(tris: &[bvhkit::Triangle], out: &std::path::Path, kept: bool) -> Result<String, String> {
+fn bake(
+    tris: &[bvhkit::Triangle],
+    out: &std::path::Path,
+    kept: bool,
+    wide: bool,
+) -> Result<String, String> {
     use bvhkit::{Aabb, Bvh, TopDown};
     let owned = bvhkit_std::OwnedBvh::<Aabb>::build(&TopDown::default(), tris)
         .map_err(|e| e.to_string())?;
@@ -890,6 +965,9 @@ fn bake(tris: &[bvhkit::Triangle], out: &std::path::Path, kept: bool) -> Result<
     } else {
         owned.plain_view()
     };
+    if wide {
+        return bake_wide(tris, &tree, out);
+    }
     let mut bytes = vec![0u8; tree.baked_len()];
     tree.bake(&mut bytes).map_err(|e| e.to_string())?;
     std::fs::write(out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
