@@ -1,8 +1,8 @@
 //! `bvhkit bake` writes a file that opens in place and answers as the tree
-//! it came from (binary or, with `--wide`, 4-wide); an empty mesh bakes to
-//! the 32-byte header alone.
+//! it came from (binary, or 4-wide with `--wide` or `--quantized`); an
+//! empty mesh bakes to the 32-byte header alone.
 
-use bvhkit::layout::Wide;
+use bvhkit::layout::{QuantizedWide, Wide};
 use bvhkit::{Aabb, Bvh, Pairs, TopDown};
 use std::process::Command;
 
@@ -89,6 +89,34 @@ fn baked_files_open_and_answer_as_the_tree() {
                 .exact()
                 .count()
                 .unwrap(),
+            want
+        );
+    }
+    // The quantized layout: opens in place and answers as the binary tree.
+    for kept in [false, true] {
+        let out = dir.join(format!("rock-quantized-{kept}.bvhk"));
+        let mut args = vec![
+            "bake",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--quantized",
+        ];
+        if kept {
+            args.push("--leaf-bounds");
+        }
+        let text = run(&args);
+        assert!(text.contains("opened and validated again"), "{text}");
+        let bytes = std::fs::read(&out).unwrap();
+        let mut store = Box::new(bvhkit::baked::Aligned([0u8; 1 << 16]));
+        store.0[..bytes.len()].copy_from_slice(&bytes);
+        let bytes = &store.0[..bytes.len()];
+        let mut seen = vec![0u32; QuantizedWide::baked_seen_words(bytes).unwrap()];
+        let q = QuantizedWide::from_baked(bytes, &mut seen).unwrap();
+        assert_eq!(q.leaf_bounds().is_some(), kept);
+        q.validate(&tris).unwrap();
+        assert_eq!(
+            Pairs::new(&q, &tris, &q, &tris).exact().count().unwrap(),
             want
         );
     }

@@ -16,7 +16,7 @@
 //! |---|---|---|
 //! | 0 | 4 | magic, the ASCII bytes `BVHK` |
 //! | 4 | 4 | version, 1 |
-//! | 8 | 4 | kind: 1 = binary tree of axis-aligned boxes; 2 = 4-wide records ([`Wide`](crate::layout::Wide), see below) |
+//! | 8 | 4 | kind: 1 = binary tree of axis-aligned boxes; 2 = 4-wide records ([`Wide`](crate::layout::Wide)), 3 = quantized 4-wide records (see below) |
 //! | 12 | 4 | node count `n` |
 //! | 16 | 4 | primitive count `p` (entries of the index array) |
 //! | 20 | 4 | depth (edges from the root to the deepest leaf) |
@@ -52,11 +52,28 @@
 //! earlier record; used slots first in each record, as many as the slot
 //! that opens the record says; every box finite and inside its parent slot's
 //! box; every primitive in exactly one leaf.
+//!
+//! # Kind 3: a quantized 4-wide tree
+//!
+//! A [`QuantizedWide`](crate::layout::QuantizedWide) layout bakes as kind 3,
+//! laid out as kind 2 but with 64-byte records as
+//! [`QuantNode`](crate::layout::QuantNode) lays them out: the grid's origin
+//! (three `f32`), its three exponents (`i8`) and the child-count bits, the
+//! 8-bit low and high grid coordinates (`lo[axis][slot]`, then `hi`), four
+//! `u32` links, four `u8` counts (0 internal, 255 unused, else a leaf's
+//! size), then four bytes of padding, zero. Besides the kind 2 checks, every
+//! origin must be finite and every step a normal power of two. Decoded
+//! boxes are not required to nest: each is rounded outward on its own
+//! record's grid, and built trees have children that poke out of their
+//! parent's rounding. What a query relies on, every primitive inside every
+//! box above it, is checked against the kept bounds when the tree has them,
+//! and by [`QuantizedWide::validate`](crate::layout::QuantizedWide::validate)
+//! given the primitives.
 
 #[cfg(feature = "layouts")]
 mod wide;
 #[cfg(feature = "layouts")]
-pub use wide::wide_baked_len;
+pub use wide::{quantized_baked_len, wide_baked_len};
 
 use crate::builders::BuildReport;
 use crate::bv::{Aabb, BoundingVolume};
@@ -74,6 +91,8 @@ pub const HEADER_BYTES: usize = 32;
 const KIND_AABB_BINARY: u32 = 1;
 /// Kind 2: a 4-wide tree of [`WideNode`](crate::layout::WideNode) records.
 const KIND_WIDE: u32 = 2;
+/// Kind 3: a quantized 4-wide tree of [`QuantNode`](crate::layout::QuantNode) records.
+const KIND_QUANTIZED: u32 = 3;
 /// Flag bit: the primitives' bounds follow the indices.
 const FLAG_LEAF_BOUNDS: u32 = 1;
 
@@ -163,6 +182,12 @@ impl Header {
             k if k == kind.id => {}
             KIND_AABB_BINARY => return Err(bad(8, "a binary tree: open it with Bvh::from_baked")),
             KIND_WIDE => return Err(bad(8, "a 4-wide tree: open it with Wide::from_baked")),
+            KIND_QUANTIZED => {
+                return Err(bad(
+                    8,
+                    "a quantized 4-wide tree: open it with QuantizedWide::from_baked",
+                ))
+            }
             _ => return Err(bad(8, "a tree kind this crate does not read")),
         }
         let flags = word(bytes, 24);

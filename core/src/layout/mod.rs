@@ -25,7 +25,7 @@
 
 mod implicit;
 mod preorder;
-mod quantized;
+pub(crate) mod quantized;
 mod trinode;
 pub(crate) mod wide;
 

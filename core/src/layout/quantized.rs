@@ -7,7 +7,7 @@ use crate::Error;
 use glam::Vec3;
 
 /// Leaf-size value of an unused slot.
-const UNUSED: u8 = u8::MAX;
+pub(crate) const UNUSED: u8 = u8::MAX;
 /// Largest leaf a quantized slot can hold.
 const MAX_LEAF: usize = UNUSED as usize - 1;
 
@@ -24,13 +24,13 @@ const MAX_LEAF: usize = UNUSED as usize - 1;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct QuantNode {
-    origin: [f32; 3],
-    exp: [i8; 3],
-    kids: u8,
-    lo: [[u8; MAX_CHILDREN]; 3],
-    hi: [[u8; MAX_CHILDREN]; 3],
-    child: [u32; MAX_CHILDREN],
-    count: [u8; MAX_CHILDREN],
+    pub(crate) origin: [f32; 3],
+    pub(crate) exp: [i8; 3],
+    pub(crate) kids: u8,
+    pub(crate) lo: [[u8; MAX_CHILDREN]; 3],
+    pub(crate) hi: [[u8; MAX_CHILDREN]; 3],
+    pub(crate) child: [u32; MAX_CHILDREN],
+    pub(crate) count: [u8; MAX_CHILDREN],
 }
 
 /// `2^e` for `e` in the normal `f32` range, exactly.
@@ -291,6 +291,35 @@ impl<'a> QuantizedWide<'a> {
     /// The records; record 0 holds the root.
     pub fn records(&self) -> &'a [QuantNode] {
         self.records
+    }
+
+    /// The layout over checked parts (a baked tree's, once
+    /// [`from_baked`](Self::from_baked) has checked them), its depth
+    /// measured here.
+    pub(crate) fn from_checked(
+        records: &'a [QuantNode],
+        indices: &'a [u32],
+        bounds: &'a [Aabb],
+        nodes: usize,
+    ) -> Result<Self, Error> {
+        let mut q = QuantizedWide {
+            records,
+            leaves: Leaves::new(indices, bounds),
+            depth: 0,
+            nodes: nodes as u32,
+        };
+        q.depth = measure_depth(&q)? as u32;
+        Ok(q)
+    }
+
+    /// The index array the leaves name runs of.
+    pub fn indices(&self) -> &'a [u32] {
+        self.leaves.indices()
+    }
+
+    /// The primitives' bounds in index order, when the tree keeps them.
+    pub fn leaf_bounds(&self) -> Option<&'a [Aabb]> {
+        self.leaves.kept()
     }
 }
 

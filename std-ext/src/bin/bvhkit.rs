@@ -251,8 +251,12 @@ enum Command {
         /// Bake the 4-wide layout (kind 2: 128-byte records, 64-byte
         /// aligned; open it with `Wide::from_baked`) instead of the binary
         /// tree.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "quantized")]
         wide: bool,
+        /// Bake the quantized 4-wide layout (kind 3: 64-byte records; open
+        /// it with `QuantizedWide::from_baked`).
+        #[arg(long)]
+        quantized: bool,
     },
     /// Draw the book's figures (SVG, computed by the library itself) into
     /// the book's figures folder, or check the committed ones against what
@@ -338,6 +342,7 @@ fn main() -> ExitCode {
             out,
             leaf_bounds,
             wide,
+            quantized,
         } => {
             let tris = match &mesh {
                 Some(p) => match bvhkit_std::mesh::load(p) {
@@ -349,7 +354,12 @@ fn main() -> ExitCode {
                 },
                 None => bvhkit_std::scene::rock(6, 1),
             };
-            match bake(&tris, &out, leaf_bounds, wide) {
+            let layout = match (wide, quantized) {
+                (_, true) => Some(true),
+                (true, false) => Some(false),
+                _ => None,
+            };
+            match bake(&tris, &out, leaf_bounds, layout) {
                 Ok(text) => {
                     print!("{text}");
                     ExitCode::SUCCESS
@@ -885,22 +895,32 @@ fn spinner(message: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// `bvhkit bake --wide`: collapses `tree` to 4-wide records, bakes and
-/// writes them, reads the file back into 64-byte aligned memory and opens
-/// it as a device would, then checks every leaf's box against its
-/// triangles; returns the report.
+/// `bvhkit bake --wide` / `--quantized`: collapses `tree` to 4-wide
+/// records (quantized or not), bakes and writes them, reads the file back
+/// into 64-byte aligned memory, opens it as a device would and validates it
+/// against the triangles; returns the report.
 fn bake_wide(
     tris: &[bvhkit::Triangle],
     tree: &bvhkit::Bvh<'_, bvhkit::Aabb>,
     out: &std::path::Path,
+    quantized: bool,
 ) -> Result<String, String> {
-    use bvhkit::layout::{Wide, WideNode};
-    use bvhkit::{BoundingVolume, Content, Hierarchy, Primitive};
+    use bvhkit::layout::{QuantNode, QuantizedWide, Wide, WideNode};
+    use bvhkit::Hierarchy;
     let err = |e: bvhkit::Error| format!("{}: {e}", out.display());
-    let mut records = vec![WideNode::ZERO; Wide::records_needed(tree).map_err(err)?];
-    let wide = Wide::from_bvh(tree, &mut records).map_err(err)?;
-    let mut bytes = vec![0u8; wide.baked_len()];
-    wide.bake(&mut bytes).map_err(err)?;
+    let bytes = if quantized {
+        let mut records = vec![QuantNode::ZERO; QuantizedWide::records_needed(tree).map_err(err)?];
+        let q = QuantizedWide::from_bvh(tree, &mut records).map_err(err)?;
+        let mut bytes = vec![0u8; q.baked_len()];
+        q.bake(&mut bytes).map_err(err)?;
+        bytes
+    } else {
+        let mut records = vec![WideNode::ZERO; Wide::records_needed(tree).map_err(err)?];
+        let wide = Wide::from_bvh(tree, &mut records).map_err(err)?;
+        let mut bytes = vec![0u8; wide.baked_len()];
+        wide.bake(&mut bytes).map_err(err)?;
+        bytes
+    };
     std::fs::write(out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
     let back = std::fs::read(out).map_err(|e| format!("{}: {e}", out.display()))?;
     // The records need a 64-byte boundary, which a `Vec<u8>` does not
@@ -909,40 +929,20 @@ fn bake_wide(
     let at = store.as_ptr().align_offset(64).min(64);
     store[at..at + back.len()].copy_from_slice(&back);
     let aligned = &store[at..at + back.len()];
-    let mut seen = vec![0u32; Wide::baked_seen_words(aligned).map_err(err)?];
-    let opened = Wide::from_baked(aligned, &mut seen).map_err(err)?;
-    if opened.primitive_count() != tris.len() {
-        return Err(format!("{}: not a tree of this mesh", out.display()));
-    }
-    // Every leaf's box holds its triangles (the structure was checked on opening).
-    let mut stack = if opened.is_empty() {
-        vec![]
+    let (records, nodes, depth) = if quantized {
+        let mut seen = vec![0u32; QuantizedWide::baked_seen_words(aligned).map_err(err)?];
+        let opened = QuantizedWide::from_baked(aligned, &mut seen).map_err(err)?;
+        opened.validate(tris).map_err(err)?;
+        (opened.records().len(), opened.node_count(), opened.depth())
     } else {
-        vec![opened.root()]
+        let mut seen = vec![0u32; Wide::baked_seen_words(aligned).map_err(err)?];
+        let opened = Wide::from_baked(aligned, &mut seen).map_err(err)?;
+        opened.validate(tris).map_err(err)?;
+        (opened.records().len(), opened.node_count(), opened.depth())
     };
-    while let Some(n) = stack.pop() {
-        match opened.content(n) {
-            Content::Inner(kids) => stack.extend_from_slice(kids.as_slice()),
-            Content::Leaf(ids) => {
-                let b = opened.bv(n);
-                if !ids
-                    .iter()
-                    .all(|&i| b.contains_aabb(&tris[i as usize].bounds()))
-                {
-                    return Err(format!(
-                        "{}: a leaf does not hold its triangles",
-                        out.display()
-                    ));
-                }
-            }
-        }
-    }
     Ok(format!(
-        "triangles {}\nrecords {}\nnodes {}\ndepth {}\nbytes {}\nbytes per triangle {:.1}\nwritten {} (opened and validated again)\n",
+        "triangles {}\nrecords {records}\nnodes {nodes}\ndepth {depth}\nbytes {}\nbytes per triangle {:.1}\nwritten {} (opened and validated again)\n",
         tris.len(),
-        opened.records().len(),
-        opened.node_count(),
-        opened.depth(),
         back.len(),
         back.len() as f64 / tris.len().max(1) as f64,
         out.display()
@@ -955,7 +955,7 @@ fn bake(
     tris: &[bvhkit::Triangle],
     out: &std::path::Path,
     kept: bool,
-    wide: bool,
+    wide: Option<bool>,
 ) -> Result<String, String> {
     use bvhkit::{Aabb, Bvh, TopDown};
     let owned = bvhkit_std::OwnedBvh::<Aabb>::build(&TopDown::default(), tris)
@@ -965,8 +965,9 @@ fn bake(
     } else {
         owned.plain_view()
     };
-    if wide {
-        return bake_wide(tris, &tree, out);
+    // `Some(quantized)`: one of the 4-wide layouts.
+    if let Some(quantized) = wide {
+        return bake_wide(tris, &tree, out, quantized);
     }
     let mut bytes = vec![0u8; tree.baked_len()];
     tree.bake(&mut bytes).map_err(|e| e.to_string())?;
