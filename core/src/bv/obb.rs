@@ -748,3 +748,243 @@ mod merge_tests {
         assert_eq!(missed, 0, "points of a part outside the merge");
     }
 }
+
+#[cfg(test)]
+mod measure_tests {
+    use super::*;
+    use glam::{Mat3, Quat};
+
+    fn close(got: f32, want: f32, what: &str) {
+        assert!(
+            (got - want).abs() <= 1e-4 * want.abs().max(1.0),
+            "{what}: {got} against {want}"
+        );
+    }
+
+    fn rotation(next: &mut impl FnMut() -> f32) -> [Vec3; 3] {
+        let axis = Vec3::new(next(), next(), next()) + Vec3::new(0.0, 0.0, 1e-3);
+        let m = Mat3::from_quat(Quat::from_axis_angle(axis.normalize(), next() * 3.1));
+        [m.x_axis, m.y_axis, m.z_axis]
+    }
+
+    fn obb(center: Vec3, axes: [Vec3; 3], half_extents: Vec3) -> Obb {
+        Obb {
+            center,
+            axes,
+            half_extents,
+        }
+    }
+
+    /// Overlap by the 15 candidate axes with both boxes' eight corners
+    /// projected in `f64`: no radius formula shared with `sat`. Returns the
+    /// largest gap between the projections (negative: they overlap), in
+    /// units of the axis length.
+    fn widest_gap(a: &Obb, b: &Obb) -> f64 {
+        let (ca, cb) = (a.corners64(), b.corners64());
+        let mut axes = [DVec3::ZERO; 15];
+        for i in 0..3 {
+            axes[i] = a.axes[i].as_dvec3();
+            axes[3 + i] = b.axes[i].as_dvec3();
+            for j in 0..3 {
+                axes[6 + 3 * i + j] = a.axes[i].as_dvec3().cross(b.axes[j].as_dvec3());
+            }
+        }
+        let mut widest = f64::NEG_INFINITY;
+        for ax in axes {
+            let len = ax.length();
+            if len < 1e-6 {
+                continue;
+            }
+            let span = |cs: &[DVec3; 8]| {
+                cs.iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                        let t = c.dot(ax) / len;
+                        (lo.min(t), hi.max(t))
+                    })
+            };
+            let ((alo, ahi), (blo, bhi)) = (span(&ca), span(&cb));
+            widest = widest.max((blo - ahi).max(alo - bhi));
+        }
+        widest
+    }
+
+    #[test]
+    fn measures_by_value() {
+        let mut next = crate::test_floats(5);
+        let o = obb(
+            Vec3::new(1.0, 2.0, 3.0),
+            rotation(&mut next),
+            Vec3::new(1.0, 2.0, 3.0),
+        );
+        close(o.volume(), 48.0, "volume");
+        close(o.surface_area(), 88.0, "area");
+        close(o.surface_area_scaled(0.5), 22.0, "scaled area");
+        close(o.volume_scaled(0.5), 6.0, "scaled volume");
+        close(o.volume_scaled(2.0), 384.0, "scaled volume up");
+        let d = ObbDito(o);
+        close(d.volume(), 48.0, "dito volume");
+        close(d.surface_area(), 88.0, "dito area");
+        close(d.surface_area_scaled(0.5), 22.0, "dito scaled area");
+        close(d.volume_scaled(0.5), 6.0, "dito scaled volume");
+        assert_eq!(d.size(), o.size());
+        assert!(o.size() > 0.0);
+        assert!(!o.is_empty() && !d.is_empty());
+        let flat = obb(
+            Vec3::ZERO,
+            [Vec3::X, Vec3::Y, Vec3::Z],
+            Vec3::new(1.0, 1.0, 0.0),
+        );
+        assert!(!flat.is_empty());
+        assert_eq!(flat.volume(), 0.0);
+        let hollow = obb(
+            Vec3::ZERO,
+            [Vec3::X, Vec3::Y, Vec3::Z],
+            Vec3::new(1.0, -0.5, 1.0),
+        );
+        assert!(hollow.is_empty() && ObbDito(hollow).is_empty());
+        assert!(Obb::EMPTY.is_empty());
+        assert_eq!(Obb::EMPTY.aabb(), Aabb::EMPTY);
+        // The axis-aligned box of a box turned 45 degrees about z.
+        let s = core::f32::consts::FRAC_1_SQRT_2;
+        let turned = obb(
+            Vec3::ZERO,
+            [Vec3::new(s, s, 0.0), Vec3::new(-s, s, 0.0), Vec3::Z],
+            Vec3::new(1.0, 1.0, 1.0),
+        );
+        let b = turned.aabb();
+        close(b.max.x, 2.0f32.sqrt(), "turned box max x");
+        close(b.min.y, -(2.0f32.sqrt()), "turned box min y");
+        close(b.max.z, 1.0, "turned box max z");
+        assert!(b.contains(&ObbDito(turned).aabb()) && ObbDito(turned).aabb().contains(&b));
+    }
+
+    /// `overlaps` (and through it `overlaps_aabb`) agrees with the corner
+    /// projections on random pairs, except within a hair of touching where
+    /// the guard may call it either way; far apart is never an overlap.
+    #[test]
+    fn sat_agrees_with_corner_projections() {
+        let mut next = crate::test_floats(9);
+        let (mut apart, mut touching) = (0, 0);
+        for _ in 0..4000 {
+            let a = obb(
+                Vec3::new(next(), next(), next()) * 3.0,
+                rotation(&mut next),
+                Vec3::new(next(), next(), next()).abs() * 2.0 + 0.05,
+            );
+            let b = obb(
+                Vec3::new(next(), next(), next()) * 3.0,
+                rotation(&mut next),
+                Vec3::new(next(), next(), next()).abs() * 2.0 + 0.05,
+            );
+            let gap = widest_gap(&a, &b);
+            if gap.abs() < 1e-4 {
+                continue;
+            }
+            let want = gap < 0.0;
+            apart += usize::from(!want);
+            touching += usize::from(want);
+            assert_eq!(a.overlaps(&b), want, "{a:?} {b:?} gap {gap}");
+            assert_eq!(b.overlaps(&a), want);
+            assert_eq!(ObbDito(a).overlaps(&ObbDito(b)), want);
+            let box_b = b.aabb();
+            let as_obb = Obb::from_aabb(&box_b);
+            let want_box = widest_gap(&a, &as_obb) < 0.0;
+            if widest_gap(&a, &as_obb).abs() >= 1e-4 {
+                assert_eq!(a.overlaps_aabb(&box_b), want_box);
+                assert_eq!(ObbDito(a).overlaps_aabb(&box_b), want_box);
+            }
+        }
+        assert!(
+            apart > 400 && touching > 400,
+            "{apart} apart, {touching} overlapping"
+        );
+        let unit = obb(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], Vec3::ONE);
+        assert!(!unit.overlaps(&Obb::EMPTY) && !Obb::EMPTY.overlaps(&unit));
+        assert!(!unit.overlaps_aabb(&Aabb::EMPTY));
+    }
+
+    /// Containment along turned axes: a point on a face is in, a hair
+    /// beyond is out; a smaller turned box inside, a larger one not.
+    #[test]
+    fn containment_along_turned_axes() {
+        let mut next = crate::test_floats(13);
+        for _ in 0..50 {
+            let axes = rotation(&mut next);
+            let c = Vec3::new(next(), next(), next()) * 5.0;
+            let o = obb(c, axes, Vec3::new(1.0, 2.0, 0.5));
+            let d = ObbDito(o);
+            for k in 0..3 {
+                let on = c + axes[k] * o.half_extents[k] * 0.999;
+                let beyond = c + axes[k] * o.half_extents[k] * 1.01;
+                assert!(o.contains_point(on) && d.contains_point(on));
+                assert!(!o.contains_point(beyond) && !d.contains_point(beyond));
+                assert!(!o.contains_point(c - axes[k] * o.half_extents[k] * 1.01));
+            }
+            let inner = obb(c, axes, o.half_extents * 0.9);
+            let outer = obb(c, axes, o.half_extents * Vec3::new(1.0, 1.0, 1.05));
+            assert!(o.contains(&inner) && d.contains(&ObbDito(inner)));
+            assert!(!o.contains(&outer) && !d.contains(&ObbDito(outer)));
+            assert!(o.contains(&Obb::EMPTY));
+            let little = Aabb::new(c - Vec3::splat(0.2), c + Vec3::splat(0.2));
+            assert!(o.contains_aabb(&little) && d.contains_aabb(&little));
+            let big = Aabb::new(c - Vec3::splat(3.0), c + Vec3::splat(3.0));
+            assert!(!o.contains_aabb(&big) && !d.contains_aabb(&big));
+        }
+    }
+
+    /// Points filling a turned box of sides 8, 2 and 0.5 (its corners
+    /// among them): every fit holds them all; PCA finds the long axis, and
+    /// PCA and DiTO stay near the box's own volume (8) where the
+    /// axis-aligned box is far larger; from boxes, every box is inside.
+    #[test]
+    fn fits_find_a_turned_box() {
+        let mut next = crate::test_floats(17);
+        for _ in 0..20 {
+            let axes = rotation(&mut next);
+            let half = Vec3::new(4.0, 1.0, 0.25);
+            let c = Vec3::new(next(), next(), next()) * 10.0;
+            let at = |u: Vec3| {
+                c + axes[0] * u.x * half.x + axes[1] * u.y * half.y + axes[2] * u.z * half.z
+            };
+            let mut pts = [Vec3::ZERO; 72];
+            for (i, p) in pts.iter_mut().enumerate() {
+                *p = if i < 8 {
+                    at(Vec3::new(
+                        if i & 1 == 0 { -1.0 } else { 1.0 },
+                        if i & 2 == 0 { -1.0 } else { 1.0 },
+                        if i & 4 == 0 { -1.0 } else { 1.0 },
+                    ))
+                } else {
+                    at(Vec3::new(next(), next(), next()))
+                };
+            }
+            let long = Obb::pca_axes(&pts[..])[0];
+            assert!(long.dot(axes[0]).abs() > 0.98, "{long} against {}", axes[0]);
+            let aabb_volume = Aabb::fit(&pts[..]).volume();
+            for (name, o) in [
+                ("pca", Obb::pca(&pts[..])),
+                ("dito", Obb::dito(&pts[..])),
+                ("fit", Obb::fit(&pts[..])),
+            ] {
+                assert!(pts.iter().all(|&p| o.contains_point(p)), "{name}");
+                assert!(o.volume() >= 8.0 * 0.999, "{name}: {}", o.volume());
+                assert!(
+                    o.volume() <= 8.0 * 1.6 || o.volume() < aabb_volume * 0.5,
+                    "{name}: {} (aabb {aabb_volume})",
+                    o.volume()
+                );
+            }
+            let boxes: [Aabb; 9] = core::array::from_fn(|i| {
+                Aabb::new(pts[i * 8] - Vec3::splat(0.1), pts[i * 8] + Vec3::splat(0.1))
+            });
+            let union = boxes.iter().fold(Aabb::EMPTY, |u, b| u.union(b));
+            let o = <Obb as BoundingVolume>::fit_boxes(&boxes[..], &union);
+            let d = <ObbDito as BoundingVolume>::fit_boxes(&boxes[..], &union);
+            assert!(boxes
+                .iter()
+                .all(|b| o.contains_aabb(b) && d.contains_aabb(b)));
+            assert!(o.volume() <= union.volume() * 1.001 && d.volume() <= union.volume() * 1.001);
+        }
+        assert!(Obb::pca::<[Vec3]>(&[]).is_empty() && Obb::dito::<[Vec3]>(&[]).is_empty());
+    }
+}

@@ -439,8 +439,12 @@ impl BoundingVolume for Sphere {
 
     #[inline]
     fn overlaps(&self, other: &Self) -> bool {
+        // Each radius on its own: the empty sphere (radius -1) overlaps
+        // nothing, not even a sphere of radius 1 or more around its centre.
         let r = self.radius + other.radius;
-        r >= 0.0 && (self.center - other.center).length_squared() <= r * r * (1.0 + round::SLACK)
+        self.radius >= 0.0
+            && other.radius >= 0.0
+            && (self.center - other.center).length_squared() <= r * r * (1.0 + round::SLACK)
     }
 
     #[inline]
@@ -534,5 +538,292 @@ impl BoundingVolume for Sphere {
             s.center,
             crate::round::up(s.radius as f64 * 1.732_050_807_568_877_3 * (1.0 + 1e-15)),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::f32::consts::PI;
+
+    fn close(got: f32, want: f32, what: &str) {
+        assert!(
+            (got - want).abs() <= 1e-5 * want.abs().max(1.0),
+            "{what}: {got} against {want}"
+        );
+    }
+
+    /// The minimal enclosing sphere by brute force, sharing no code with
+    /// the fits: every sphere through two points as a diameter, through
+    /// three on a great circle, or through four, solved here by Cramer's
+    /// rule; the smallest that holds every point.
+    fn minimal_radius(pts: &[Vec3]) -> f64 {
+        let p: [DVec3; 8] =
+            core::array::from_fn(|i| pts.get(i).map_or(DVec3::ZERO, |v| v.as_dvec3()));
+        let n = pts.len();
+        let holds = |c: DVec3, r: f64| {
+            p[..n]
+                .iter()
+                .all(|q| (*q - c).length() <= r * (1.0 + 1e-9) + 1e-12)
+        };
+        let mut best = f64::INFINITY;
+        let mut consider = |c: DVec3, r: f64| {
+            if r < best && holds(c, r) {
+                best = r;
+            }
+        };
+        // Centre x solving 2 (q_k - q_0) . x = |q_k|^2 - |q_0|^2 for the
+        // given rows, within the plane of the points when there are three.
+        let det3 = |a: DVec3, b: DVec3, c: DVec3| a.dot(b.cross(c));
+        for i in 0..n {
+            for j in i + 1..n {
+                consider((p[i] + p[j]) / 2.0, (p[i] - p[j]).length() / 2.0);
+                for k in j + 1..n {
+                    let (u, v) = (p[j] - p[i], p[k] - p[i]);
+                    let w = u.cross(v);
+                    let rows = [u * 2.0, v * 2.0, w];
+                    let rhs = [u.length_squared(), v.length_squared(), 0.0];
+                    let det = det3(rows[0], rows[1], rows[2]);
+                    if det.abs() > 1e-12 {
+                        let col = |m: usize| {
+                            let r: [DVec3; 3] = core::array::from_fn(|t| {
+                                let mut row = rows[t].to_array();
+                                row[m] = rhs[t];
+                                DVec3::from_array(row)
+                            });
+                            det3(r[0], r[1], r[2]) / det
+                        };
+                        let x = DVec3::new(col(0), col(1), col(2));
+                        consider(p[i] + x, x.length());
+                    }
+                    for l in k + 1..n {
+                        let t = p[l] - p[i];
+                        let rows = [u * 2.0, v * 2.0, t * 2.0];
+                        let rhs = [u.length_squared(), v.length_squared(), t.length_squared()];
+                        let det = det3(rows[0], rows[1], rows[2]);
+                        if det.abs() > 1e-12 {
+                            let col = |m: usize| {
+                                let r: [DVec3; 3] = core::array::from_fn(|s| {
+                                    let mut row = rows[s].to_array();
+                                    row[m] = rhs[s];
+                                    DVec3::from_array(row)
+                                });
+                                det3(r[0], r[1], r[2]) / det
+                            };
+                            let x = DVec3::new(col(0), col(1), col(2));
+                            consider(p[i] + x, x.length());
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn measures_by_value() {
+        let s = Sphere::new(Vec3::new(1.0, 2.0, 3.0), 2.0);
+        close(s.volume(), 4.0 / 3.0 * PI * 8.0, "volume");
+        close(s.surface_area(), 16.0 * PI, "area");
+        close(s.surface_area_scaled(0.5), 4.0 * PI, "scaled area");
+        close(s.volume_scaled(0.5), 4.0 / 3.0 * PI, "scaled volume");
+        close(
+            s.volume_scaled(3.0),
+            4.0 / 3.0 * PI * 216.0,
+            "scaled volume up",
+        );
+        assert_eq!(s.size(), 2.0);
+        assert_eq!(
+            s.aabb(),
+            Aabb::new(Vec3::new(-1.0, 0.0, 1.0), Vec3::new(3.0, 4.0, 5.0))
+        );
+        for empty in [Sphere::EMPTY, Sphere::new(Vec3::ONE, f32::NAN)] {
+            assert!(empty.is_empty());
+            assert_eq!(empty.volume(), 0.0);
+            assert_eq!(empty.surface_area_scaled(2.0), 0.0);
+            assert_eq!(empty.aabb(), Aabb::EMPTY);
+        }
+        assert!(!Sphere::new(Vec3::ONE, 0.0).is_empty());
+    }
+
+    /// Each predicate on a near case either side of its boundary, nested
+    /// cases and the empty sphere.
+    #[test]
+    fn predicates_either_side_of_the_boundary() {
+        let s = Sphere::new(Vec3::ZERO, 1.0);
+        let at = |x: f32, r: f32| Sphere::new(Vec3::new(x, 0.0, 0.0), r);
+        assert!(s.overlaps(&at(2.0, 1.0))); // touching
+        assert!(!s.overlaps(&at(2.01, 1.0)));
+        assert!(s.overlaps(&at(0.1, 0.1))); // nested
+        assert!(!s.overlaps(&Sphere::EMPTY));
+        let cube = |x: f32| Aabb::new(Vec3::new(x, -0.5, -0.5), Vec3::new(x + 1.0, 0.5, 0.5));
+        assert!(s.overlaps_aabb(&cube(0.999)));
+        assert!(!s.overlaps_aabb(&cube(1.01)));
+        assert!(s.overlaps_aabb(&cube(-0.5)));
+        assert!(!Sphere::EMPTY.overlaps_aabb(&cube(0.0)));
+        assert!(s.contains_point(Vec3::new(0.0, 1.0, 0.0)));
+        assert!(!s.contains_point(Vec3::new(0.0, 1.001, 0.0)));
+        assert!(s.contains(&at(0.5, 0.5)));
+        assert!(!s.contains(&at(0.5, 0.51)));
+        assert!(s.contains(&Sphere::EMPTY));
+        let small = Aabb::new(Vec3::splat(-0.5), Vec3::splat(0.5)); // corner at 0.866
+        assert!(s.contains_aabb(&small));
+        assert!(!s.contains_aabb(&Aabb::new(Vec3::splat(-0.5), Vec3::new(0.5, 0.5, 0.8))));
+        // The far corner decides, whichever side it is on.
+        assert!(!s.contains_aabb(&Aabb::new(Vec3::new(-0.8, -0.5, -0.5), Vec3::splat(0.5))));
+    }
+
+    #[test]
+    fn merge_is_the_smallest_sphere_around_both() {
+        let a = Sphere::new(Vec3::ZERO, 1.0);
+        let b = Sphere::new(Vec3::new(4.0, 0.0, 0.0), 1.0);
+        for m in [a.merge(&b), b.merge(&a)] {
+            close(m.radius, 3.0, "radius");
+            close(m.center.x, 2.0, "centre");
+            assert!(m.contains(&a) && m.contains(&b));
+        }
+        let c = Sphere::new(Vec3::new(4.0, 0.0, 0.0), 3.0);
+        let m = a.merge(&c);
+        close(m.radius, 4.0, "unequal radius");
+        close(m.center.x, 3.0, "unequal centre");
+        let inner = Sphere::new(Vec3::new(0.5, 0.0, 0.0), 0.25);
+        assert_eq!(a.merge(&inner), a);
+        assert_eq!(inner.merge(&a), a);
+        assert_eq!(a.merge(&Sphere::EMPTY), a);
+        assert_eq!(Sphere::EMPTY.merge(&a), a);
+    }
+
+    /// Welzl equals the brute-force minimal sphere on random sets (which
+    /// exercise the sphere through two, three and four points) and on sets
+    /// whose answer is known: an obtuse triangle (two points span it), a
+    /// regular tetrahedron, coplanar and collinear points.
+    #[test]
+    fn welzl_is_the_minimal_sphere() {
+        let third = (3.0f32).sqrt();
+        let known: [(&[Vec3], f32); 5] = [
+            (
+                &[
+                    Vec3::new(-1.0, 0.0, 0.0),
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(0.0, 0.1, 0.0),
+                ],
+                1.0,
+            ),
+            (
+                &[
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(-0.5, third / 2.0, 0.0),
+                    Vec3::new(-0.5, -third / 2.0, 0.0),
+                ],
+                1.0,
+            ),
+            (
+                &[
+                    Vec3::new(1.0, 1.0, 1.0),
+                    Vec3::new(1.0, -1.0, -1.0),
+                    Vec3::new(-1.0, 1.0, -1.0),
+                    Vec3::new(-1.0, -1.0, 1.0),
+                ],
+                third,
+            ),
+            (
+                &[
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(0.0, 1.0, 0.0),
+                    Vec3::new(-1.0, 0.0, 0.0),
+                    Vec3::new(0.0, -1.0, 0.0),
+                    Vec3::ZERO,
+                ],
+                1.0,
+            ),
+            (
+                &[
+                    Vec3::ZERO,
+                    Vec3::new(1.0, 1.0, 1.0),
+                    Vec3::new(3.0, 3.0, 3.0),
+                    Vec3::new(2.0, 2.0, 2.0),
+                ],
+                1.5 * third,
+            ),
+        ];
+        for (pts, r) in known {
+            let w = Sphere::welzl(pts);
+            close(w.radius, r, "known set");
+            assert!(pts.iter().all(|&p| w.contains_point(p)));
+        }
+        let mut next = crate::test_floats(41);
+        for n in 1..=8 {
+            for _ in 0..40 {
+                let pts: [Vec3; 8] =
+                    core::array::from_fn(|_| Vec3::new(next(), next(), next()) * 3.0);
+                let pts = &pts[..n];
+                let w = Sphere::welzl(pts);
+                assert!(pts.iter().all(|&p| w.contains_point(p)));
+                close(w.radius, minimal_radius(pts) as f32, "random set");
+                // The approximations contain everything too, and are no smaller.
+                for s in [
+                    Sphere::ritter(pts),
+                    Sphere::ritter_refined(pts, 4),
+                    Sphere::fit(pts),
+                ] {
+                    assert!(pts.iter().all(|&p| s.contains_point(p)));
+                    assert!(s.radius >= w.radius * (1.0 - 1e-6));
+                    assert!(
+                        s.radius <= w.radius * 1.5 + 1e-6,
+                        "{} against {}",
+                        s.radius,
+                        w.radius
+                    );
+                }
+            }
+        }
+    }
+
+    /// Ritter traced by hand on a triangle: the x extremes span the first
+    /// sphere (radius 1 about the origin), the apex at height sqrt(3) lies
+    /// outside, and one growth step gives radius (1 + sqrt 3) / 2.
+    #[test]
+    fn ritter_grows_as_traced_by_hand() {
+        let pts = [
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 3.0f32.sqrt(), 0.0),
+        ];
+        let s = Sphere::ritter(&pts);
+        close(s.radius, (1.0 + 3.0f32.sqrt()) / 2.0, "grown radius");
+        close(s.center.y, (3.0f32.sqrt() - 1.0) / 2.0, "grown centre");
+        close(s.center.x, 0.0, "centre x");
+        assert!(Sphere::ritter::<[Vec3]>(&[]).is_empty());
+        assert!(Sphere::ritter_refined::<[Vec3]>(&[], 3).is_empty());
+        assert!(Sphere::welzl::<[Vec3]>(&[]).is_empty());
+    }
+
+    /// From boxes: every box inside, no larger than the sphere around the
+    /// boxes' corners by more than the Ritter slack; one box gives its
+    /// circumscribed sphere.
+    #[test]
+    fn fit_from_boxes_holds_every_box() {
+        let one = Aabb::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(3.0, 4.0, 5.0));
+        let s = Sphere::fit_boxes(&[one][..], &one);
+        close(s.radius, 3.0f32.sqrt(), "one box");
+        close(s.center.x, 2.0, "one box centre");
+        assert_eq!(Sphere::from_aabb(&one).center, Vec3::new(2.0, 3.0, 4.0));
+        close(Sphere::from_aabb(&one).radius, 3.0f32.sqrt(), "from_aabb");
+        assert!(Sphere::from_aabb(&Aabb::EMPTY).is_empty());
+        let mut next = crate::test_floats(43);
+        for _ in 0..30 {
+            let boxes: [Aabb; 6] = core::array::from_fn(|_| {
+                let c = Vec3::new(next(), next(), next()) * 4.0;
+                let h = Vec3::new(next(), next(), next()).abs();
+                Aabb::new(c - h, c + h)
+            });
+            let union = boxes.iter().fold(Aabb::EMPTY, |u, b| u.union(b));
+            let s = Sphere::fit_boxes(&boxes[..], &union);
+            assert!(boxes.iter().all(|b| s.contains_aabb(b)));
+            let corners: [Vec3; 48] = core::array::from_fn(|i| boxes[i / 8].corner(i % 8));
+            let tight = minimal_radius(&corners[..8]).max(0.0) as f32; // a lower bound: one box's corners
+            assert!(s.radius >= tight * (1.0 - 1e-6));
+            assert!(s.radius <= Sphere::welzl(&corners[..]).radius * 1.5);
+        }
     }
 }
