@@ -52,73 +52,45 @@ fn baked_files_open_and_answer_as_the_tree() {
         let count = |t: &Bvh<'_, Aabb>| Pairs::new(t, &tris, t, &tris).exact().count().unwrap();
         assert_eq!(count(&tree), count(&built.view()));
     }
-    // The 4-wide layout, with and without kept bounds: opens in place from
-    // 64-byte aligned memory and answers as the binary tree.
+    // The 4-wide layouts, with and without kept bounds: each opens in place
+    // from 64-byte aligned memory, validates against the mesh and answers
+    // as the binary tree.
     let built = bvhkit_std::OwnedBvh::<Aabb>::build(&TopDown::default(), &tris).unwrap();
     let want = Pairs::new(&built.view(), &tris, &built.view(), &tris)
         .exact()
         .count()
         .unwrap();
-    for kept in [false, true] {
-        let out = dir.join(format!("rock-wide-{kept}.bvhk"));
-        let mut args = vec![
-            "bake",
-            mesh.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--wide",
-        ];
-        if kept {
-            args.push("--leaf-bounds");
+    for layout in ["--wide", "--quantized"] {
+        for kept in [false, true] {
+            let out = dir.join(format!("rock{layout}-{kept}.bvhk"));
+            let (mesh, out_path) = (mesh.to_str().unwrap(), out.to_str().unwrap());
+            let mut args = vec!["bake", mesh, "-o", out_path, layout];
+            if kept {
+                args.push("--leaf-bounds");
+            }
+            let text = run(&args);
+            assert!(text.contains("opened and validated again"), "{text}");
+            let bytes = std::fs::read(&out).unwrap();
+            let mut store = Box::new(bvhkit::baked::Aligned([0u8; 1 << 16]));
+            store.0[..bytes.len()].copy_from_slice(&bytes);
+            let bytes = &store.0[..bytes.len()];
+            let (records, has_kept, pairs) = if layout == "--wide" {
+                let mut seen = vec![0u32; Wide::baked_seen_words(bytes).unwrap()];
+                let w = Wide::from_baked(bytes, &mut seen).unwrap();
+                w.validate(&tris).unwrap();
+                let pairs = Pairs::new(&w, &tris, &w, &tris).exact().count().unwrap();
+                (w.records().len(), w.leaf_bounds().is_some(), pairs)
+            } else {
+                let mut seen = vec![0u32; QuantizedWide::baked_seen_words(bytes).unwrap()];
+                let q = QuantizedWide::from_baked(bytes, &mut seen).unwrap();
+                q.validate(&tris).unwrap();
+                let pairs = Pairs::new(&q, &tris, &q, &tris).exact().count().unwrap();
+                (q.records().len(), q.leaf_bounds().is_some(), pairs)
+            };
+            assert_eq!(has_kept, kept);
+            assert!(text.contains(&format!("records {records}\n")), "{text}");
+            assert_eq!(pairs, want, "{layout}");
         }
-        let text = run(&args);
-        assert!(text.contains("opened and validated again"), "{text}");
-        let bytes = std::fs::read(&out).unwrap();
-        let mut store = Box::new(bvhkit::baked::Aligned([0u8; 1 << 16]));
-        store.0[..bytes.len()].copy_from_slice(&bytes);
-        let bytes = &store.0[..bytes.len()];
-        let mut seen = vec![0u32; Wide::baked_seen_words(bytes).unwrap()];
-        let wide = Wide::from_baked(bytes, &mut seen).unwrap();
-        assert_eq!(wide.leaf_bounds().is_some(), kept);
-        assert!(
-            text.contains(&format!("records {}\n", wide.records().len())),
-            "{text}"
-        );
-        assert_eq!(
-            Pairs::new(&wide, &tris, &wide, &tris)
-                .exact()
-                .count()
-                .unwrap(),
-            want
-        );
-    }
-    // The quantized layout: opens in place and answers as the binary tree.
-    for kept in [false, true] {
-        let out = dir.join(format!("rock-quantized-{kept}.bvhk"));
-        let mut args = vec![
-            "bake",
-            mesh.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--quantized",
-        ];
-        if kept {
-            args.push("--leaf-bounds");
-        }
-        let text = run(&args);
-        assert!(text.contains("opened and validated again"), "{text}");
-        let bytes = std::fs::read(&out).unwrap();
-        let mut store = Box::new(bvhkit::baked::Aligned([0u8; 1 << 16]));
-        store.0[..bytes.len()].copy_from_slice(&bytes);
-        let bytes = &store.0[..bytes.len()];
-        let mut seen = vec![0u32; QuantizedWide::baked_seen_words(bytes).unwrap()];
-        let q = QuantizedWide::from_baked(bytes, &mut seen).unwrap();
-        assert_eq!(q.leaf_bounds().is_some(), kept);
-        q.validate(&tris).unwrap();
-        assert_eq!(
-            Pairs::new(&q, &tris, &q, &tris).exact().count().unwrap(),
-            want
-        );
     }
     // An empty scene is not bad input: a header and nothing else.
     let empty = dir.join("empty.obj");
