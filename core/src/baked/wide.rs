@@ -449,6 +449,21 @@ impl<'a> QuantizedWide<'a> {
 impl Wide<'_> {
     /// [`QuantizedWide::validate`] for a 4-wide tree: built over `prims`,
     /// each primitive's box inside every box above it.
+    ///
+    /// ```
+    /// use bvhkit::layout::{Wide, WideNode};
+    /// use bvhkit::{Aabb, Node, TopDown};
+    /// use glam::Vec3;
+    /// let mut pts: Vec<Vec3> = (0..9).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+    /// let (mut nodes, mut idx) = (vec![Node::<Aabb>::ZERO; 17], vec![0u32; 9]);
+    /// let tree = TopDown::default().build(&pts, &mut nodes, &mut idx)?;
+    /// let mut records = vec![WideNode::ZERO; Wide::max_records(9)];
+    /// let wide = Wide::from_bvh(&tree, &mut records)?;
+    /// assert!(wide.validate(&pts).is_ok());
+    /// pts[4].y = 1.0; // out of every box
+    /// assert!(wide.validate(&pts).is_err());
+    /// # Ok::<(), bvhkit::Error>(())
+    /// ```
     pub fn validate<P: crate::Primitive>(&self, prims: &[P]) -> Result<(), Error> {
         validate_against(self, prims)
     }
@@ -921,8 +936,11 @@ mod quantized_tests {
         let mut next = crate::test_floats(seed);
         // A table, not `powi`: Miri perturbs `powi` afresh on each call.
         let scale = [1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3][(seed % 7) as usize];
+        // Near the origin and far from it (a grid origin of 2.5e6 with steps
+        // of 1e-3 leaves few bits for the grid).
+        let far = [17.3, -4.0e4, 2.5e6][(seed % 5 % 3) as usize];
         core::array::from_fn(|_| {
-            let o = Vec3::new(next(), next(), next()) * 5.0 * scale + Vec3::splat(17.3);
+            let o = Vec3::new(next(), next(), next()) * 5.0 * scale + Vec3::splat(far);
             let mut c = || o + Vec3::new(next(), next(), next()) * scale;
             Triangle::new(c(), c(), c())
         })
@@ -949,7 +967,8 @@ mod quantized_tests {
         q.bake(&mut out.0).unwrap()
     }
 
-    /// Built trees at scales from 1e-3 to 1e3 open, though their decoded
+    /// Built trees at scales from 1e-3 to 1e3, near the origin and up to
+    /// 2.5e6 from it, open, though their decoded
     /// boxes do not always nest (a nesting check refused each of the first five
     /// seeds), answer as brute force, and validate against their triangles.
     #[test]
