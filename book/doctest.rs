@@ -771,6 +771,13 @@ mod tests {
             }
         };
         let kb = |n: u64| format!("{:.1} KB", n as f64 / 1000.0);
+        // The chapter names the step that sets the typical set's stack.
+        assert_eq!(
+            row("typical")[3],
+            step("typical", "build-sah-sphere"),
+            "embedded.md says the sphere build sets the typical stack"
+        );
+        assert!(step("typical", "aabb-moved") < step("typical", "build-sah-sphere"));
         let more = |set: &str| kb(row(set)[0] - minimal[0]);
         for claim in [
             format!("takes {} more flash.", more("minimal,init-empty")),
@@ -787,6 +794,10 @@ mod tests {
                 "B moved: {}\n  (`aabb-moved` in the per-step table) against {} for",
                 kb(step("typical", "aabb-moved")),
                 kb(step("typical", "aabb-sah-dfs"))
+            ),
+            format!(
+                "sphere tree's build, {}\n  (`build-sah-sphere`), just ahead of",
+                kb(step("typical", "build-sah-sphere"))
             ),
             format!(
                 "Minimal stack** is the builder: {} for `build-sah-a`",
