@@ -913,12 +913,12 @@ mod measure_tests {
             let c = Vec3::new(next(), next(), next()) * 5.0;
             let o = obb(c, axes, Vec3::new(1.0, 2.0, 0.5));
             let d = ObbDito(o);
-            for k in 0..3 {
-                let on = c + axes[k] * o.half_extents[k] * 0.999;
-                let beyond = c + axes[k] * o.half_extents[k] * 1.01;
+            for (k, axis) in axes.iter().enumerate() {
+                let half = *axis * o.half_extents[k];
+                let (on, beyond) = (c + half * 0.999, c + half * 1.01);
                 assert!(o.contains_point(on) && d.contains_point(on));
                 assert!(!o.contains_point(beyond) && !d.contains_point(beyond));
-                assert!(!o.contains_point(c - axes[k] * o.half_extents[k] * 1.01));
+                assert!(!o.contains_point(c - half * 1.01));
             }
             let inner = obb(c, axes, o.half_extents * 0.9);
             let outer = obb(c, axes, o.half_extents * Vec3::new(1.0, 1.0, 1.05));
