@@ -836,6 +836,20 @@ pub trait Exercises {
         children: [Aabb; 2],
         grandchildren: [Option<[Aabb; 2]>; 2],
     ) -> Option<(usize, usize)>;
+
+    /// Exercise 53a: the bin of a centroid coordinate `t` among `k` bins of
+    /// width `1 / scale` that start at `lo` (bin `j` holds
+    /// `lo + j / scale <= t < lo + (j + 1) / scale`); a `t` outside them
+    /// goes to the nearer end bin, so the largest centroid, at
+    /// `lo + k / scale`, is in bin `k - 1`. `t`, `lo` and `scale` are
+    /// finite, `scale > 0`, `k >= 2`.
+    fn bin_index(&self, t: f32, lo: f32, scale: f32, k: usize) -> usize;
+
+    /// Exercise 53b: whether the partition sends `t` left of the plane
+    /// between bins `boundary - 1` and `boundary` (`1 <= boundary < k`). It
+    /// must be `bin_index(t, lo, scale, k) < boundary` for every `t`: the
+    /// children's boxes come from the bins.
+    fn bin_goes_left(&self, t: f32, lo: f32, scale: f32, k: usize, boundary: usize) -> bool;
 }
 
 /// Exercise 38b's bound on `polygon.len() + planes.len()`: a 26-DOP's face

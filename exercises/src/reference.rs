@@ -55,6 +55,20 @@ impl Exercises for Reference {
         bvhkit::builders::area_rotation([l, r], [gl, gr]).map(|r| (r.down, r.up))
     }
 
+    fn bin_index(&self, t: f32, lo: f32, scale: f32, k: usize) -> usize {
+        // The textbook rule; the library reads the whole part from the bits
+        // of `x + 64` instead (no saturating conversion), with the same
+        // agreement between bins and partition.
+        let x = ((t - lo) * scale).clamp(0.0, (k - 1) as f32);
+        x as usize
+    }
+
+    fn bin_goes_left(&self, t: f32, lo: f32, scale: f32, _k: usize, boundary: usize) -> bool {
+        // `floor(clamp(x)) < boundary` is `x < boundary` for a whole
+        // `boundary` in `1..k`, on either side of the clamp.
+        (t - lo) * scale < boundary as f32
+    }
+
     fn aabb_overlaps(&self, a: &Aabb, b: &Aabb) -> bool {
         a.overlaps(b)
     }

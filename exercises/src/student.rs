@@ -730,4 +730,20 @@ impl Exercises for Student {
         let _ = (children, grandchildren);
         todo!("exercise 52")
     }
+
+    fn bin_index(&self, t: f32, lo: f32, scale: f32, k: usize) -> usize {
+        // Hint: `(t - lo) * scale` counts bin widths from `lo`; clamp it to
+        // `[0, k - 1]` before taking the whole part, so that neither a value
+        // below `lo` nor the largest centroid falls outside the bins.
+        let _ = (t, lo, scale, k);
+        todo!("exercise 53")
+    }
+
+    fn bin_goes_left(&self, t: f32, lo: f32, scale: f32, k: usize, boundary: usize) -> bool {
+        // Hint: compare the same number `bin_index` takes the whole part
+        // of, not the plane's position in world units (`lo + boundary /
+        // scale` rounds differently).
+        let _ = (t, lo, scale, k, boundary);
+        todo!("exercise 53")
+    }
 }

@@ -58,6 +58,7 @@ mod ex49_baked;
 mod ex50_frame_box;
 mod ex51_sphere_cast;
 mod ex52_area_rotation;
+mod ex53_bins_and_partition;
 #[cfg(test)]
 mod wrong;
 
@@ -86,7 +87,7 @@ impl std::fmt::Debug for Check {
 }
 
 /// Titles of the exercises.
-pub const EXERCISES: [(u32, &str); 52] = [
+pub const EXERCISES: [(u32, &str); 53] = [
     (1, "AABB overlap"),
     (2, "AABB and sphere: fit and merge"),
     (3, "top-down partition: object median"),
@@ -163,6 +164,7 @@ pub const EXERCISES: [(u32, &str); 52] = [
         52,
         "rotating by area: the swap that shrinks a dynamic tree most",
     ),
+    (53, "bins and the partition that must agree with them"),
 ];
 
 /// A score for one exercise.
@@ -235,6 +237,7 @@ pub fn checks() -> Vec<Check> {
         ex50_frame_box::checks(),
         ex51_sphere_cast::checks(),
         ex52_area_rotation::checks(),
+        ex53_bins_and_partition::checks(),
     ]
     .concat()
 }
@@ -448,7 +451,7 @@ mod tests {
         for s in grade(&Reference) {
             assert_eq!(s.earned, s.possible, "{s:?}");
         }
-        assert!(report(&grade(&Reference)).ends_with("total: 565/565 points (100%)\n"));
+        assert!(report(&grade(&Reference)).ends_with("total: 575/575 points (100%)\n"));
     }
 
     /// A never-returning answer scores 0 on its own checks only, after the

@@ -56,6 +56,7 @@ use super::ex49_baked;
 use super::ex50_frame_box;
 use super::ex51_sphere_cast;
 use super::ex52_area_rotation;
+use super::ex53_bins_and_partition;
 use bvhkit::builders::DynNode;
 use bvhkit::glam::DVec3;
 
@@ -125,6 +126,7 @@ pub fn counts() -> Vec<(u32, u32)> {
         (50, ex50_frame_box::wrong::COUNT),
         (51, ex51_sphere_cast::wrong::COUNT),
         (52, ex52_area_rotation::wrong::COUNT),
+        (53, ex53_bins_and_partition::wrong::COUNT),
     ]
 }
 
@@ -427,5 +429,13 @@ impl Exercises for Wrong {
         grandchildren: [Option<[Aabb; 2]>; 2],
     ) -> Option<(usize, usize)> {
         ex52_area_rotation::wrong::area_rotation(self.k(52), children, grandchildren)
+    }
+
+    fn bin_index(&self, t: f32, lo: f32, scale: f32, k: usize) -> usize {
+        ex53_bins_and_partition::wrong::bin_index(self.k(53), t, lo, scale, k)
+    }
+
+    fn bin_goes_left(&self, t: f32, lo: f32, scale: f32, k: usize, boundary: usize) -> bool {
+        ex53_bins_and_partition::wrong::bin_goes_left(self.k(53), t, lo, scale, k, boundary)
     }
 }

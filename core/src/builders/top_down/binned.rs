@@ -3,7 +3,7 @@
 
 use super::criteria::Norm;
 use super::source::Source;
-use super::split_points::Plan;
+use super::split_points::{bin_of, Plan};
 use super::Task;
 use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
@@ -135,7 +135,7 @@ fn plan_three_axes<S: Source, const N: usize>(
     let scale = bin_scales(c, k, axes);
     // Bin bounds in 4-lane registers: a union is two instructions, and the
     // three bin indices come from one subtract and multiply. Each lane does
-    // the scalar path's arithmetic (`Aabb::center`, `even_bin`, `Aabb::union`
+    // the scalar path's arithmetic (`Aabb::center`, `bin_of`, `Aabb::union`
     // with the same operand order), so the bins, and the tree, are the same
     // as one axis at a time would give.
     let mut lanes = [[LaneBin::EMPTY; N]; 3];
@@ -146,11 +146,12 @@ fn plan_three_axes<S: Source, const N: usize>(
     for &i in range {
         let (lo, hi) = src.lanes(i);
         let t = ((lo * 0.5 + hi * 0.5) - lo_c) * sc;
-        // Clamping before the conversion is `(t as usize).min(top)`: top is
-        // a whole number and t is finite.
-        let t = t.max(Vec3A::ZERO).min(top_f);
+        // `bin_of`, lane by lane: the clamp and the sum in registers.
+        let t: [f32; 3] = (t.max(Vec3A::ZERO).min(top_f) + Vec3A::splat(64.0)).into();
         for a in 0..3 {
-            let j = (t[a] as i32 as usize).min(top);
+            // `& (N - 1)`: the bin is at most `top < N` already (N is a
+            // power of two); the mask lets the compiler drop the bounds check.
+            let j = ((t[a].to_bits() >> 17) as usize & 63) & (N - 1);
             let bin = &mut lanes[a][j];
             bin.min = lo.min(bin.min);
             bin.max = hi.max(bin.max);
@@ -304,8 +305,7 @@ fn score_row<S: Source>(
     for &i in range {
         let (lo, hi) = src.lanes(i);
         let t = ((lo[a] * 0.5 + hi[a] * 0.5) - axis.lo) * axis.scale;
-        let t = t.max(0.0).min(top_f);
-        let j = (t as i32 as usize).min(top);
+        let j = bin_of(t.max(0.0).min(top_f));
         if let (Some(bin), Some(n)) = (row.get_mut(j), count.get_mut(j)) {
             bin.min = lo.min(bin.min);
             bin.max = hi.max(bin.max);

@@ -2,7 +2,7 @@
 //! halves on the way.
 
 use super::source::{centroid, Source};
-use super::split_points::{even_bin, Plan};
+use super::split_points::{even_bin, goes_left, Plan};
 use super::Halves;
 use crate::bv::Aabb;
 use glam::Vec3;
@@ -30,10 +30,7 @@ pub(super) fn apply<S: Source>(src: &S, range: &mut [S::Item], plan: Plan) -> Ha
             boundary,
             known: Some((mid, bounds)),
         } => {
-            // `even_bin(c, lo, scale, k) < boundary` without the conversion:
-            // `boundary <= k - 1` is whole, so truncating first changes nothing.
-            let edge = boundary as f32;
-            let left = partition_known(src, range, |c| (c - lo) * scale < edge, axis);
+            let left = partition_known(src, range, |c| goes_left(c, lo, scale, boundary), axis);
             debug_assert_eq!(left, mid, "the partition disagrees with the bins");
             // The children's centroids are not gathered: each child's box
             // contains them, and binning over the box instead of the

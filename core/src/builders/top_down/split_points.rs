@@ -39,10 +39,33 @@ impl Binning {
     }
 }
 
+/// The bin of `t` among `k` (at most 64) bins from `lo`, `scale` bins per
+/// unit: `(t - lo) * scale` clamped to `[0, k - 1]`, then [`bin_of`].
 #[inline(always)]
 pub(super) fn even_bin(t: f32, lo: f32, scale: f32, k: usize) -> usize {
-    // `as usize` saturates negative values to 0; the min clamps t == hi.
-    (((t - lo) * scale) as usize).min(k - 1)
+    bin_of(((t - lo) * scale).max(0.0).min((k - 1) as f32))
+}
+
+/// The whole part of `x` in `[0, 63]`, read from the bits of `x + 64`: the
+/// sum's exponent is fixed, so its top six mantissa bits are the bin. A
+/// float-to-integer conversion costs a saturation check per value, and the
+/// binning loop makes three per primitive. The sum rounds, so an `x` within
+/// 2^-18 below a whole number lands in the bin above; every binning and
+/// partition goes through this one rule (or [`goes_left`], its comparison
+/// form), so bins and partitions agree on every primitive.
+#[inline(always)]
+pub(super) fn bin_of(x: f32) -> usize {
+    const _: () = assert!(MAX_BINS <= 64, "bin_of reads six bits");
+    ((x + 64.0).to_bits() >> 17) as usize & 63
+}
+
+/// `even_bin(t, lo, scale, k) < boundary` for `1 <= boundary < k`, without
+/// the clamp: the sum rounds monotonically, and `64 + boundary` is whole,
+/// so the comparison of the unclamped sum gives the same answer on either
+/// side of the clamp.
+#[inline(always)]
+pub(super) fn goes_left(t: f32, lo: f32, scale: f32, boundary: usize) -> bool {
+    (t - lo) * scale + 64.0 < 64.0 + boundary as f32
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -350,5 +373,83 @@ impl SplitMix {
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{bin_of, even_bin, goes_left};
+
+    /// `bin_of` is the whole part for whole numbers and halves, and a value
+    /// within 2^-18 below a whole number rounds up into the next bin (the
+    /// documented rounding), never past 63.
+    #[test]
+    fn bin_of_reads_the_whole_part() {
+        for j in 0..64u32 {
+            let x = j as f32;
+            assert_eq!(bin_of(x), j as usize);
+            if j < 63 {
+                assert_eq!(bin_of(x + 0.5), j as usize);
+                assert_eq!(bin_of(x + 1.0 - 1.0 / 1024.0), j as usize);
+            }
+            if j > 0 {
+                // The largest float below j rounds up when added to 64.
+                let below = f32::from_bits(x.to_bits() - 1);
+                assert_eq!(bin_of(below), j as usize, "{below}");
+            }
+        }
+        assert_eq!(bin_of(0.0), 0);
+        assert_eq!(bin_of(-0.0), 0);
+        assert_eq!(bin_of(1e-30), 0);
+    }
+
+    /// Every value gets a bin in `[0, k)`, bins never decrease along the
+    /// axis, and the partition's comparison sends a value left exactly when
+    /// its bin is below the boundary: on random values, on every plane and
+    /// the floats next to it, and far outside the extent.
+    #[test]
+    fn bins_and_the_partition_agree_near_every_plane() {
+        let mut next = crate::test_floats(0x5eed_b145);
+        let mut checked = 0;
+        for case in 0..200 {
+            let k = [2usize, 3, 8, 16, 31, 32][case % 6];
+            let lo = next() * [1.0, 1e3, 1e6, 3e-5][case % 4];
+            let extent = (next().abs() + 1e-3) * [1.0, 1e4, 1e-3][case % 3];
+            let scale = k as f32 / extent;
+            let mut values = [0.0f32; 200];
+            for (i, v) in values.iter_mut().enumerate() {
+                *v = match i % 5 {
+                    // On a plane, and one or two floats either side of it.
+                    0..=2 => {
+                        let plane = lo + (i % k) as f32 / scale;
+                        let step = (i % 3) as u32;
+                        if i % 2 == 0 {
+                            f32::from_bits(plane.to_bits().wrapping_add(step))
+                        } else {
+                            f32::from_bits(plane.to_bits().wrapping_sub(step))
+                        }
+                    }
+                    3 => lo + (next() * 0.5 + 0.5) * extent,
+                    _ => lo + next() * 4.0 * extent, // outside too
+                };
+            }
+            values.sort_by(f32::total_cmp);
+            let mut last = 0;
+            for &t in &values {
+                let bin = even_bin(t, lo, scale, k);
+                assert!(bin < k, "bin {bin} of {k} for {t}");
+                assert!(bin >= last, "bins decrease at {t}");
+                last = bin;
+                for boundary in 1..k {
+                    assert_eq!(
+                        goes_left(t, lo, scale, boundary),
+                        bin < boundary,
+                        "t {t}, lo {lo}, scale {scale}, boundary {boundary} of {k}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 100_000, "{checked}");
     }
 }
