@@ -31,7 +31,7 @@ use crate::bv::Aabb;
 #[cfg(feature = "sphere")]
 use crate::bv::Sphere;
 use crate::primitive::Triangle;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use robust::{orient2d, orient3d, Coord, Coord3D};
 
 /// Whether two primitives touch. Implemented where the test can be exact.
@@ -277,9 +277,27 @@ impl Orientation for F32Signs {
 }
 
 /// Exact triangle–triangle intersection (closed triangles, touching counts).
-/// Zero-area triangles are treated as the segment or point they are.
+/// Zero-area triangles are treated as the segment or point they are. Two
+/// triangles with a common corner meet without any predicate evaluated
+/// ([`triangles_intersect_with`] tests the signs alone).
 pub fn triangles_intersect(t1: &Triangle, t2: &Triangle) -> bool {
-    triangles_intersect_with(t1, t2, ExactSigns)
+    shares_a_corner(t1, t2) || triangles_intersect_with(t1, t2, ExactSigns)
+}
+
+/// Whether a corner of `t1` is exactly a corner of `t2`: a common point, so
+/// the closed triangles meet. Neighbours in one mesh share corners, and a
+/// mesh against itself or a copy of it in place (coincident surfaces) is
+/// almost only such pairs: every orientation there is exactly zero, the
+/// case the exact predicates settle last and slowest.
+#[inline]
+fn shares_a_corner(t1: &Triangle, t2: &Triangle) -> bool {
+    // Nine comparisons without a branch: the pairs of a moved copy share no
+    // corner, and a branch per comparison showed in their time.
+    let b = t2.v.map(Vec3A::from);
+    t1.v.iter().fold(false, |any, &a| {
+        let a = Vec3A::from(a);
+        any | a.cmpeq(b[0]).all() | a.cmpeq(b[1]).all() | a.cmpeq(b[2]).all()
+    })
 }
 
 /// The same test with the orientation signs of `o`: exact with
@@ -606,6 +624,56 @@ mod tests {
         for k in 0..3 {
             assert_eq!(orient2(a, b, c, k), sign(n[k] as f64), "axis {k}");
         }
+    }
+
+    /// Two triangles with a corner in common meet, whichever corners they
+    /// are, whatever else the triangles do (coplanar and overlapping, apart
+    /// but for the corner, zero area, far from the origin, `-0.0` against
+    /// `0.0`), as the edge reference says; and a corner that misses by one
+    /// float is decided by the full test.
+    #[test]
+    fn a_shared_corner_is_a_meeting() {
+        let far = Vec3::new(3.0e6, -1.5e6, 7.25e5);
+        let mut checked = 0;
+        for origin in [Vec3::ZERO, far] {
+            let c = origin + Vec3::new(0.5, 0.25, -0.75);
+            let others: [[Vec3; 2]; 5] = [
+                [Vec3::X, Vec3::Y],                  // coplanar neighbour
+                [-Vec3::X, -Vec3::Y],                // coplanar, opposite side
+                [Vec3::Z, Vec3::new(0.0, 1.0, 1.0)], // a wall
+                [Vec3::X * 2.0, Vec3::X],            // zero area
+                [Vec3::ZERO, Vec3::ZERO],            // a point
+            ];
+            for [p, q] in others {
+                let t1 = Triangle::new(
+                    c,
+                    c + Vec3::new(1.0, 0.5, 0.0),
+                    c + Vec3::new(0.0, 1.0, 0.0),
+                );
+                let t2 = Triangle::new(c, c + p, c + q);
+                for r1 in 0..3 {
+                    for r2 in 0..3 {
+                        let a = Triangle::new(t1.v[r1], t1.v[(r1 + 1) % 3], t1.v[(r1 + 2) % 3]);
+                        let b = Triangle::new(t2.v[r2], t2.v[(r2 + 1) % 3], t2.v[(r2 + 2) % 3]);
+                        assert!(triangles_intersect(&a, &b), "{a:?} {b:?}");
+                        assert!(triangles_intersect_by_edges(&a, &b), "{a:?} {b:?}");
+                        assert!(triangles_intersect_with(&a, &b, ExactSigns));
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 90);
+        // `-0.0` is the same point as `0.0`.
+        let t1 = Triangle::new(Vec3::new(-0.0, 0.0, 0.0), Vec3::X, Vec3::Y);
+        let t2 = Triangle::new(Vec3::ZERO, -Vec3::X, -Vec3::Z);
+        assert!(shares_a_corner(&t1, &t2) && triangles_intersect(&t1, &t2));
+        // One float away: no shared corner, and the triangles are apart.
+        let next = Vec3::new(f32::from_bits(1.0f32.to_bits() + 1), 0.0, 0.0);
+        let t1 = Triangle::new(Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+        let t2 = Triangle::new(next, Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, -1.0, 0.0));
+        assert!(!shares_a_corner(&t1, &t2));
+        assert!(!triangles_intersect(&t1, &t2) && !triangles_intersect_by_edges(&t1, &t2));
     }
 
     #[test]
