@@ -655,6 +655,7 @@ mod tests {
                     for r2 in 0..3 {
                         let a = Triangle::new(t1.v[r1], t1.v[(r1 + 1) % 3], t1.v[(r1 + 2) % 3]);
                         let b = Triangle::new(t2.v[r2], t2.v[(r2 + 1) % 3], t2.v[(r2 + 2) % 3]);
+                        assert!(shares_a_corner(&a, &b) && shares_a_corner(&b, &a));
                         assert!(triangles_intersect(&a, &b), "{a:?} {b:?}");
                         assert!(triangles_intersect_by_edges(&a, &b), "{a:?} {b:?}");
                         assert!(triangles_intersect_with(&a, &b, ExactSigns));
@@ -664,6 +665,27 @@ mod tests {
             }
         }
         assert_eq!(checked, 90);
+        // Two corners in common (an edge), three (the same triangle), one
+        // corner given twice: still a corner in common.
+        let t = Triangle::new(far, far + Vec3::X, far + Vec3::Y);
+        let edge = Triangle::new(far + Vec3::Y, far, far - Vec3::X);
+        let twice = Triangle::new(far + Vec3::X, far + Vec3::X, far + Vec3::Z);
+        let ends = Triangle::new(far + Vec3::X, far + Vec3::Z, far + Vec3::X);
+        let last = Triangle::new(far + Vec3::Z, far + Vec3::X, far + Vec3::X);
+        for (a, b) in [
+            (t, edge),
+            (t, t),
+            (t, twice),
+            (twice, twice),
+            (t, ends),
+            (t, last),
+        ] {
+            assert!(
+                shares_a_corner(&a, &b) && shares_a_corner(&b, &a),
+                "{a:?} {b:?}"
+            );
+            assert!(triangles_intersect(&a, &b) && triangles_intersect_by_edges(&a, &b));
+        }
         // `-0.0` is the same point as `0.0`.
         let t1 = Triangle::new(Vec3::new(-0.0, 0.0, 0.0), Vec3::X, Vec3::Y);
         let t2 = Triangle::new(Vec3::ZERO, -Vec3::X, -Vec3::Z);
