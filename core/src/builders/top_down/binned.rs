@@ -3,7 +3,7 @@
 
 use super::criteria::Norm;
 use super::source::Source;
-use super::split_points::{bin_of, Plan};
+use super::split_points::{bin_of, bin_of_sum, Plan};
 use super::Task;
 use crate::builders::strategy::MAX_BINS;
 use crate::bv::Aabb;
@@ -141,7 +141,7 @@ fn plan_three_axes<S: Source, const N: usize>(
     let mut lanes = [[LaneBin::EMPTY; N]; 3];
     let mut counts = [[0u32; N]; 3];
     let (lo_c, sc) = (Vec3A::from(c.min), Vec3A::from(Vec3::from(scale)));
-    let top = k.clamp(1, N) - 1; // < N: no bounds check in the loop
+    let top = k.clamp(1, N) - 1; // the last bin, < N
     let top_f = Vec3A::splat(top as f32);
     for &i in range {
         let (lo, hi) = src.lanes(i);
@@ -151,7 +151,7 @@ fn plan_three_axes<S: Source, const N: usize>(
         for a in 0..3 {
             // `& (N - 1)`: the bin is at most `top < N` already (N is a
             // power of two); the mask lets the compiler drop the bounds check.
-            let j = ((t[a].to_bits() >> 17) as usize & 63) & (N - 1);
+            let j = bin_of_sum(t[a]) & (N - 1);
             let bin = &mut lanes[a][j];
             bin.min = lo.min(bin.min);
             bin.max = hi.max(bin.max);

@@ -55,8 +55,15 @@ pub(super) fn even_bin(t: f32, lo: f32, scale: f32, k: usize) -> usize {
 /// form), so bins and partitions agree on every primitive.
 #[inline(always)]
 pub(super) fn bin_of(x: f32) -> usize {
+    bin_of_sum(x + 64.0)
+}
+
+/// [`bin_of`] given the sum `x + 64` (which the binning loop forms for three
+/// lanes at once).
+#[inline(always)]
+pub(super) fn bin_of_sum(sum: f32) -> usize {
     const _: () = assert!(MAX_BINS <= 64, "bin_of reads six bits");
-    ((x + 64.0).to_bits() >> 17) as usize & 63
+    (sum.to_bits() >> 17) as usize & 63
 }
 
 /// `even_bin(t, lo, scale, k) < boundary` for `1 <= boundary < k`, without
