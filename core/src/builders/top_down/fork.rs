@@ -526,6 +526,91 @@ mod tests {
         assert_eq!(compared, 3 * volumes * 5 * 6 * 2);
     }
 
+    /// The bits of a box tree's nodes: `==` on floats takes `-0.0` for
+    /// `+0.0`, the bits do not.
+    fn node_bits(nodes: &[Node<Aabb>]) -> impl Iterator<Item = [u32; 8]> + '_ {
+        nodes.iter().map(|n| {
+            let (lo, hi) = (n.bv.min, n.bv.max);
+            let b = [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].map(f32::to_bits);
+            [b[0], b[1], b[2], b[3], b[4], b[5], n.first, n.count]
+        })
+    }
+
+    /// The forked build keeps the sequential one's bits down to the sign of
+    /// a zero (`==` would take one for the other): on a scene whose boxes
+    /// touch the planes x = 0, y = 0 and z = 0 with `-0.0` and `+0.0` at
+    /// random, every forked build gives the sequential tree's nodes bit for
+    /// bit. Binning a large node's pieces on several threads would have to
+    /// merge their bins in the operand order one pass uses to pass it.
+    #[test]
+    fn binning_in_pieces_keeps_the_sign_of_zero() {
+        let mut s = 99u32;
+        let mut r = move || {
+            s = s.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            s >> 8
+        };
+        let mut signed_zero = |v: f32| match r() % 4 {
+            0 => 0.0,
+            1 => -0.0,
+            _ => v,
+        };
+        let base = scene(12);
+        let tris: [Triangle; N] = core::array::from_fn(|i| {
+            let t = base[i];
+            let snap = |p: Vec3| Vec3::new(p.x - 5.0, p.y - 5.0, p.z - 5.0);
+            let mut v = t.v.map(snap);
+            for p in v.iter_mut() {
+                *p = Vec3::new(signed_zero(p.x), signed_zero(p.y), signed_zero(p.z));
+            }
+            Triangle::new(v[0], v[1], v[2])
+        });
+        let mut nodes = [Node::<Aabb>::EMPTY; M];
+        let (mut idx, mut cache) = ([0u32; N], [PrimitiveRef::EMPTY; N]);
+        let want = parts(
+            &TopDown::sah()
+                .build_cached(&tris, &mut nodes, &mut idx, &mut cache)
+                .unwrap(),
+        );
+        let negative_zeros = node_bits(&want.0)
+            .flat_map(|b| b.into_iter().take(6))
+            .filter(|&b| b == (-0.0f32).to_bits())
+            .count();
+        assert!(negative_zeros > 10, "{negative_zeros}");
+        for grain in [2, 3, 5, 16, 100] {
+            let mut out = [Node::<Aabb>::ZERO; M];
+            let mut scratch = [Node::<Aabb>::ZERO; M];
+            let in_order = TopDown::sah()
+                .build_cached_forked(
+                    &tris,
+                    &mut out,
+                    &mut idx,
+                    &mut cache,
+                    &mut scratch,
+                    &InOrder { grain },
+                )
+                .map(|t| parts(&t))
+                .unwrap();
+            let reversed = TopDown::sah()
+                .build_cached_forked(
+                    &tris,
+                    &mut out,
+                    &mut idx,
+                    &mut cache,
+                    &mut scratch,
+                    &Reversed(grain),
+                )
+                .map(|t| parts(&t))
+                .unwrap();
+            for got in [in_order, reversed] {
+                assert!(got == want, "grain {grain}");
+                assert!(
+                    node_bits(&got.0).eq(node_bits(&want.0)),
+                    "grain {grain}: a zero changed sign"
+                );
+            }
+        }
+    }
+
     /// With a configuration that falls back (the object median's splits,
     /// the depth budget of a shallow limit), the report adds up the same.
     #[cfg(all(feature = "strategies", feature = "sphere"))]
