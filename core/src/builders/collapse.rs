@@ -438,6 +438,53 @@ mod tests {
         assert_eq!((done.count, done.depth, done.collapsed), (3, 1, 0));
     }
 
+    /// The deepest trees the builders make collapse too: a chain (every
+    /// inner node a leaf on the left and the rest of the chain on the
+    /// right) 63 levels deep keeps a finished left leaf waiting at every
+    /// level, the most the pass's stack of pending costs ever holds, and it
+    /// neither overflows nor errs.
+    #[test]
+    fn a_chain_as_deep_as_the_builders_go_collapses() {
+        const N: usize = 64;
+        let mut nodes = [Node::<Aabb>::EMPTY; 2 * N - 1];
+        // Leaf j in slot 2j - 1 (slot 0 for none), inner node j in slot 2j:
+        // children adjacent, left (the leaf) before right.
+        // Spread out but for the last four, which share a box: those make
+        // one leaf, the rest keep theirs.
+        let boxes: [Aabb; N] = core::array::from_fn(|j| unit(1.5f32.powi(j.min(N - 4) as i32)));
+        for j in (0..N - 1).rev() {
+            let right = if j == N - 2 {
+                Node {
+                    bv: boxes[N - 1],
+                    first: (N - 1) as u32,
+                    count: 1,
+                }
+            } else {
+                nodes[2 * j + 2]
+            };
+            nodes[2 * j + 1] = Node {
+                bv: boxes[j],
+                first: j as u32,
+                count: 1,
+            };
+            nodes[2 * j + 2] = right;
+            nodes[2 * j] = Node {
+                bv: boxes[j].union(&right.bv),
+                first: (2 * j + 1) as u32,
+                count: 0,
+            };
+        }
+        let count = 2 * N - 1;
+        assert_eq!(depth_of(&nodes, count), (N - 1) as u32);
+        let sah = Collapse::Sah {
+            max_leaf_size: 4,
+            traversal_cost: 1.0,
+        };
+        let done = sah.apply(&mut nodes, count, (N - 1) as u32).unwrap();
+        let (leaves, _) = check(&nodes, done.count, N as u32, 4, 1.0);
+        assert_eq!((done.collapsed, leaves), (3, N - 3), "{done:?}");
+    }
+
     #[test]
     fn none_and_a_limit_of_one_change_nothing() {
         let boxes: [Aabb; 8] = core::array::from_fn(|i| unit(i as f32));

@@ -1689,6 +1689,24 @@ mod tests {
     }
 
     /// The size the embedded chapter quotes for its storage formula.
+    /// The largest live id bounds what a query reads, whatever the order
+    /// of insertion: ids 5 then 2 need 6 primitives, and 3 is refused
+    /// (not read past its end); after 5 leaves, 3 are enough.
+    #[test]
+    fn the_largest_id_bounds_the_primitives_a_query_needs() {
+        use crate::query::Query;
+        let boxes: [Aabb; 6] = core::array::from_fn(|i| unit_at(i as f32));
+        let mut storage = [DynNode::<Aabb>::EMPTY; 3];
+        let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+        let five = tree.insert(5, &boxes[5]).unwrap();
+        tree.insert(2, &boxes[2]).unwrap();
+        let everything = Aabb::new(Vec3::splat(-1.0), Vec3::splat(10.0));
+        assert_eq!(tree.overlapping(&boxes, &everything, |_| {}), Ok(2));
+        assert!(tree.overlapping(&boxes[..3], &everything, |_| {}).is_err());
+        tree.remove(five).unwrap();
+        assert_eq!(tree.overlapping(&boxes[..3], &everything, |_| {}), Ok(1));
+    }
+
     #[test]
     fn a_node_of_boxes_is_48_bytes() {
         assert_eq!(core::mem::size_of::<DynNode<Aabb>>(), 48);
