@@ -458,6 +458,20 @@ mod tests {
         }
     }
 
+    /// The parts of `cfg`'s forked build of `tris` through `fork`.
+    #[allow(clippy::type_complexity)]
+    fn forked<B: BoundingVolume + Send + Sync, F: Fork>(
+        cfg: TopDown,
+        tris: &[Triangle],
+        out: &mut [Node<B>; M],
+        scratch: &mut [Node<B>; M],
+        fork: &F,
+    ) -> ([Node<B>; M], [u32; N], usize, BuildReport) {
+        let (mut idx, mut cache) = ([0u32; N], [PrimitiveRef::EMPTY; N]);
+        let t = cfg.build_cached_forked(tris, out, &mut idx, &mut cache, scratch, fork);
+        parts(&t.unwrap())
+    }
+
     /// Every forked build of `cfg` over volume `B` equals the sequential
     /// one; returns how many were compared.
     fn forked_equals_sequential<B: BoundingVolume + Send + Sync + PartialEq>(
@@ -476,28 +490,10 @@ mod tests {
             for grain in [2, 3, 5, 16, 100, 100_000] {
                 let mut out = [Node::<B>::ZERO; M];
                 let mut scratch = [Node::<B>::ZERO; M];
-                let in_order = cfg
-                    .build_cached_forked(
-                        tris,
-                        &mut out,
-                        &mut idx,
-                        &mut cache,
-                        &mut scratch,
-                        &InOrder { grain },
-                    )
-                    .map(|t| parts(&t));
-                assert!(in_order.unwrap() == want, "n {n}, grain {grain}, {cfg:?}");
-                let reversed = cfg
-                    .build_cached_forked(
-                        tris,
-                        &mut out,
-                        &mut idx,
-                        &mut cache,
-                        &mut scratch,
-                        &Reversed(grain),
-                    )
-                    .map(|t| parts(&t));
-                assert!(reversed.unwrap() == want, "n {n}, grain {grain}, {cfg:?}");
+                let in_order = forked(cfg, tris, &mut out, &mut scratch, &InOrder { grain });
+                assert!(in_order == want, "n {n}, grain {grain}, {cfg:?}");
+                let reversed = forked(cfg, tris, &mut out, &mut scratch, &Reversed(grain));
+                assert!(reversed == want, "n {n}, grain {grain}, {cfg:?}");
                 compared += 2;
             }
         }
@@ -577,30 +573,10 @@ mod tests {
             .count();
         assert!(negative_zeros > 10, "{negative_zeros}");
         for grain in [2, 3, 5, 16, 100] {
-            let mut out = [Node::<Aabb>::ZERO; M];
-            let mut scratch = [Node::<Aabb>::ZERO; M];
-            let in_order = TopDown::sah()
-                .build_cached_forked(
-                    &tris,
-                    &mut out,
-                    &mut idx,
-                    &mut cache,
-                    &mut scratch,
-                    &InOrder { grain },
-                )
-                .map(|t| parts(&t))
-                .unwrap();
-            let reversed = TopDown::sah()
-                .build_cached_forked(
-                    &tris,
-                    &mut out,
-                    &mut idx,
-                    &mut cache,
-                    &mut scratch,
-                    &Reversed(grain),
-                )
-                .map(|t| parts(&t))
-                .unwrap();
+            let (mut out, mut scratch) = ([Node::<Aabb>::ZERO; M], [Node::<Aabb>::ZERO; M]);
+            let sah = TopDown::sah();
+            let in_order = forked(sah, &tris, &mut out, &mut scratch, &InOrder { grain });
+            let reversed = forked(sah, &tris, &mut out, &mut scratch, &Reversed(grain));
             for got in [in_order, reversed] {
                 assert!(got == want, "grain {grain}");
                 assert!(
