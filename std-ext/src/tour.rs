@@ -82,25 +82,38 @@ pub struct Row {
 
 /// The brute-force answer: every pair of A and B whose bounds overlap, sorted.
 ///
-/// Only primitives whose bounds overlap the other object's bounding box can be
-/// in a pair, so the double loop runs over those: exact, and fast enough to
-/// serve as the reference on the default scene.
+/// No tree is involved, only comparisons, so it can judge the trees. Two boxes
+/// that overlap overlap on x, and then exactly one of them starts (its `min.x`)
+/// inside the other's x interval, the tie going to A's. So each box, sorted by
+/// `min.x`, is tested against the other side's boxes that start inside its own
+/// interval: every candidate pair once, found by binary search and a scan, far
+/// fewer than the double loop's `|A|·|B|` tests (a box with a NaN `min.x`
+/// overlaps nothing, and is left out).
 pub fn reference_pairs(a: &[Triangle], b: &[Triangle]) -> Vec<(u32, u32)> {
-    let bounds = |t: &[Triangle]| t.iter().fold(Aabb::EMPTY, |acc, p| acc.union(&p.bounds()));
-    let (ba, bb) = (bounds(a), bounds(b));
-    let near_b: Vec<(u32, Aabb)> = a
-        .iter()
-        .enumerate()
-        .filter_map(|(i, t)| Some((i as u32, t.bounds())).filter(|(_, x)| x.overlaps(&bb)))
-        .collect();
-    let near_a: Vec<(u32, Aabb)> = b
-        .iter()
-        .enumerate()
-        .filter_map(|(i, t)| Some((i as u32, t.bounds())).filter(|(_, x)| x.overlaps(&ba)))
-        .collect();
+    let sorted = |t: &[Triangle]| {
+        let mut boxes: Vec<(u32, Aabb)> = (0u32..)
+            .zip(t)
+            .map(|(i, p)| (i, p.bounds()))
+            .filter(|(_, x)| !x.min.x.is_nan())
+            .collect();
+        boxes.sort_unstable_by(|p, q| p.1.min.x.total_cmp(&q.1.min.x));
+        boxes
+    };
+    let (sa, sb) = (sorted(a), sorted(b));
     let mut pairs = Vec::new();
-    for &(i, x) in &near_b {
-        for &(j, y) in &near_a {
+    // B's boxes that start in [x.min.x, x.max.x], then A's that start in
+    // (y.min.x, y.max.x]: the `<` and `<=` split the tie of equal starts.
+    for &(i, x) in &sa {
+        let from = sb.partition_point(|(_, y)| y.min.x < x.min.x);
+        for &(j, y) in sb[from..].iter().take_while(|(_, y)| y.min.x <= x.max.x) {
+            if x.overlaps(&y) {
+                pairs.push((i, j));
+            }
+        }
+    }
+    for &(j, y) in &sb {
+        let from = sa.partition_point(|(_, x)| x.min.x <= y.min.x);
+        for &(i, x) in sa[from..].iter().take_while(|(_, x)| x.min.x <= y.max.x) {
             if x.overlaps(&y) {
                 pairs.push((i, j));
             }
@@ -466,6 +479,40 @@ pub fn render(r: &TourReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sweep against the double loop it replaced, on triangles whose
+    /// corners sit on a coarse grid: equal starts, touching faces, `-0.0`
+    /// next to `0.0`, and a NaN that overlaps nothing.
+    #[test]
+    fn reference_pairs_equal_the_double_loop() {
+        let mut seed = 7u32;
+        let mut grid = || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            match seed >> 28 {
+                0 => -0.0,
+                k => (k as f32 - 8.0) * 0.5,
+            }
+        };
+        let mut corner = || bvhkit::glam::Vec3::new(grid(), grid(), grid());
+        let mut triangles = |n| -> Vec<Triangle> {
+            (0..n)
+                .map(|_| Triangle::new(corner(), corner(), corner()))
+                .collect()
+        };
+        let (mut a, b) = (triangles(150), triangles(120));
+        a[3].v[0].x = f32::NAN;
+        let mut want = Vec::new();
+        for (i, x) in (0u32..).zip(&a) {
+            for (j, y) in (0u32..).zip(&b) {
+                if x.bounds().overlaps(&y.bounds()) {
+                    want.push((i, j));
+                }
+            }
+        }
+        assert!(want.len() > 1000, "{}", want.len());
+        assert_eq!(reference_pairs(&a, &b), want);
+        assert_eq!(reference_pairs(&a, &[]), []);
+    }
 
     #[test]
     fn every_builder_gets_one_verified_row() {
