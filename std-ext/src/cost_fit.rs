@@ -29,10 +29,10 @@
 //! use bvhkit_std::cost_fit::{self, Scene};
 //! use bvhkit_std::scene;
 //!
-//! // A tiny run: train on two small scenes, predict a third.
+//! // A tiny run: train on the quick scenes, predict a rock; one round.
 //! let train = cost_fit::training_scenes(true);
 //! let held_out = vec![Scene::new("rock 3", scene::rock(3, 1), cost_fit::check_motions())];
-//! let report = cost_fit::run(&train, &held_out, 3, |_| {})?;
+//! let report = cost_fit::run(&train, &held_out, 1, |_| {})?;
 //! assert_eq!(report.models.len(), 4); // AABB, sphere, OBB, 14-DOP
 //! for row in report.rows.iter().filter(|r| r.sample.held_out) {
 //!     assert!(row.measured_ms > 0.0 && row.predicted_ms > 0.0);

@@ -330,6 +330,33 @@ pub fn pareto<const K: usize>(keys: &[[f64; K]]) -> Vec<bool> {
         .collect()
 }
 
+/// Only the builder table of a report: every builder on the generated rock
+/// pair and on each given mesh against a shifted copy (build time, SAH cost,
+/// query time, answers checked against brute force), the Pareto front marked
+/// per scene. Seconds on a small scene, where the whole report's advisor
+/// grid takes most of a minute.
+///
+/// ```
+/// let rows = bvhkit_std::report::run_builders(1, 1, &[], |_| {})?;
+/// assert!(rows.iter().all(|r| r.verified) && rows.iter().any(|r| r.pareto));
+/// # Ok::<(), bvhkit::Error>(())
+/// ```
+pub fn run_builders(
+    subdivisions: u32,
+    runs: usize,
+    meshes: &[(String, Vec<Triangle>)],
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<BuilderRow>, bvhkit::Error> {
+    let (a, b) = scene::rock_pair(subdivisions);
+    let mut builders = builder_rows("rocks", &a, &b, runs, &mut progress)?;
+    for (name, mesh) in meshes {
+        let moved = shifted_copy(mesh);
+        builders.extend(builder_rows(name, mesh, &moved, runs, &mut progress)?);
+    }
+    mark_pareto(&mut builders);
+    Ok(builders)
+}
+
 /// Measures everything on the generated scenes; `progress` is told what is
 /// being measured.
 pub fn run(
@@ -352,12 +379,7 @@ pub fn run_with_meshes(
     let (a, b) = scene::rock_pair(subdivisions);
     let n = a.len();
     let fits = run_fits(subdivisions, runs, meshes, &mut progress);
-    let mut builders = builder_rows("rocks", &a, &b, runs, &mut progress)?;
-    for (name, mesh) in meshes {
-        let moved = shifted_copy(mesh);
-        builders.extend(builder_rows(name, mesh, &moved, runs, &mut progress)?);
-    }
-    mark_pareto(&mut builders);
+    let builders = run_builders(subdivisions, runs, meshes, &mut progress)?;
     let volume_rows = run_volumes(subdivisions, runs, meshes, &mut progress)?;
     progress("tree representations");
     let layouts = layouts::measure(&a, &b, &TopDown::sah(), 10_000, runs)?;
@@ -719,13 +741,13 @@ mod tests {
     #[test]
     fn meshes_get_fits_and_verified_builder_rows_of_their_own() {
         let mesh = ("tiny.obj".to_string(), scene::rock(1, 3));
-        let r = run_with_meshes(1, 1, std::slice::from_ref(&mesh), |_| {}).unwrap();
-        assert!(r.fits.iter().any(|f| f.mesh == "tiny.obj"));
-        let rows: Vec<_> = r
-            .builders
-            .iter()
-            .filter(|b| b.scene == "tiny.obj")
-            .collect();
+        // The two parts a mesh adds rows to (the whole report's advisor grid
+        // would add 20 s of a debug build to this test for nothing it checks).
+        let meshes = std::slice::from_ref(&mesh);
+        let fits = run_fits(1, 1, meshes, |_| {});
+        assert!(fits.iter().any(|f| f.mesh == "tiny.obj"));
+        let builders = run_builders(1, 1, meshes, |_| {}).unwrap();
+        let rows: Vec<_> = builders.iter().filter(|b| b.scene == "tiny.obj").collect();
         assert!(rows.len() >= PRESETS.len() && rows.iter().all(|b| b.verified));
         assert!(rows.iter().any(|b| b.pareto));
     }
