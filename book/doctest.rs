@@ -256,7 +256,7 @@ mod tests {
     /// each heading with the points the grader gives it.
     #[test]
     fn exercise_headings_match_the_grader() {
-        use bvhkit_exercises::grader::{checks, EXERCISES};
+        use bvhkit_exercises::grader::{EXERCISES, checks};
         let chapter = include_str!("src/exercises.md");
         for &(n, _) in EXERCISES.iter() {
             let points: u32 = checks()
@@ -455,10 +455,12 @@ mod tests {
             .unwrap();
         assert_eq!(fastest["method"], "aabb");
         let slivers = rows(&run, "fits", "slivers");
-        assert!(slivers
-            .iter()
-            .filter(|r| r["method"].as_str().unwrap().starts_with("sphere"))
-            .all(|r| num(r, "hull_ratio") > 10.0));
+        assert!(
+            slivers
+                .iter()
+                .filter(|r| r["method"].as_str().unwrap().starts_with("sphere"))
+                .all(|r| num(r, "hull_ratio") > 10.0)
+        );
         // Volumes, on every scene: every answer exact; top-down k-DOP trees
         // test fewer volumes and primitives than the box tree; spheres test
         // several times the box tree's primitives; OBB trees test about as
@@ -647,11 +649,7 @@ mod tests {
         let best = |k: &str, min: bool| {
             let pick = layouts.iter().min_by(|x, y| {
                 let o = num(x, k).total_cmp(&num(y, k));
-                if min {
-                    o
-                } else {
-                    o.reverse()
-                }
+                if min { o } else { o.reverse() }
             });
             pick.unwrap()["layout"].as_str().unwrap()
         };
@@ -1050,7 +1048,19 @@ mod tests {
             .collect();
         assert!(targets.len() >= 5);
         for r in &targets {
-            let [tris, build, sah, fastest, _, pairs, rays, best_rays, bytes, quality, _] = r[..]
+            let [
+                tris,
+                build,
+                sah,
+                fastest,
+                _,
+                pairs,
+                rays,
+                best_rays,
+                bytes,
+                quality,
+                _,
+            ] = r[..]
             else {
                 panic!("targets row {r:?}")
             };
