@@ -26,7 +26,7 @@ use crate::bv::{Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node, MAX_DEPTH};
 use crate::Error;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// No node.
 pub const NULL: u32 = u32::MAX;
@@ -135,6 +135,92 @@ impl LeafHandle {
     pub const fn generation(self) -> u32 {
         self.generation
     }
+}
+
+/// Bins per axis for [`sah_split`].
+const SPLIT_BINS: usize = 16;
+
+/// Nodes over this few objects split at the median: binning three axes
+/// costs about 0.5 us a node whatever its size, most of a rebuild's time
+/// if every node paid it, for splits that differ little this low.
+const MEDIAN_BELOW: usize = 16;
+
+/// Splits `items` between equal-width bins of their boxes' centres, on the
+/// axis and at the boundary that minimise the surface-area cost
+/// `area(left) * n_left + area(right) * n_right`, partitioning them in
+/// place; returns the left count, or `None` when on every axis all centres
+/// fall in one bin (then the caller splits at the median).
+fn sah_split(items: &mut [u32], boxes: &[Aabb], centres: &Aabb) -> Option<usize> {
+    let width = Vec3A::from(centres.extent());
+    let scale = Vec3A::select(
+        width.cmpgt(Vec3A::ZERO),
+        Vec3A::splat(SPLIT_BINS as f32) / width,
+        Vec3A::ZERO,
+    );
+    let (origin, top) = (
+        Vec3A::from(centres.min),
+        Vec3A::splat((SPLIT_BINS - 1) as f32),
+    );
+    // The three bins of a box, one per axis, in 4-lane registers (the same
+    // arithmetic when binning and when partitioning, so the two agree).
+    let bins_of = |b: &Aabb| {
+        let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
+        let t = (((lo + hi) * 0.5 - origin) * scale).clamp(Vec3A::ZERO, top);
+        ([t.x as usize, t.y as usize, t.z as usize], lo, hi)
+    };
+    let mut low = [[Vec3A::INFINITY; SPLIT_BINS]; 3];
+    let mut high = [[Vec3A::NEG_INFINITY; SPLIT_BINS]; 3];
+    let mut count = [[0u32; SPLIT_BINS]; 3];
+    for &i in items.iter() {
+        let (bins, lo, hi) = bins_of(&boxes[i as usize]);
+        for (axis, k) in bins.into_iter().enumerate() {
+            let k = k & (SPLIT_BINS - 1); // at most `top` already
+            low[axis][k] = low[axis][k].min(lo);
+            high[axis][k] = high[axis][k].max(hi);
+            count[axis][k] += 1;
+        }
+    }
+    let half_area = |lo: Vec3A, hi: Vec3A| {
+        let e = (hi - lo).max(Vec3A::ZERO);
+        f64::from(e.x * e.y + e.y * e.z + e.z * e.x)
+    };
+    let mut best: Option<(f64, usize, usize)> = None;
+    for axis in 0..3 {
+        if scale[axis] == 0.0 {
+            continue;
+        }
+        // Right to left: the cost of everything from bin k on.
+        let mut right = [0.0f64; SPLIT_BINS];
+        let (mut lo, mut hi, mut n) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0);
+        for k in (1..SPLIT_BINS).rev() {
+            lo = lo.min(low[axis][k]);
+            hi = hi.max(high[axis][k]);
+            n += count[axis][k];
+            right[k] = half_area(lo, hi) * f64::from(n);
+        }
+        let (mut lo, mut hi, mut n) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0);
+        for k in 1..SPLIT_BINS {
+            lo = lo.min(low[axis][k - 1]);
+            hi = hi.max(high[axis][k - 1]);
+            n += count[axis][k - 1];
+            if n == 0 || n as usize == items.len() {
+                continue;
+            }
+            let cost = half_area(lo, hi) * f64::from(n) + right[k];
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, k));
+            }
+        }
+    }
+    let (_, axis, boundary) = best?;
+    let mut left = 0;
+    for j in 0..items.len() {
+        if bins_of(&boxes[items[j] as usize]).0[axis] < boundary {
+            items.swap(left, j);
+            left += 1;
+        }
+    }
+    Some(left)
 }
 
 /// How an insertion picks the sibling of the new leaf.
@@ -435,7 +521,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         self.free = i;
     }
 
-    fn fat(&self, item: u32, bounds: &Aabb) -> Result<B, Error> {
+    pub(crate) fn fat(&self, item: u32, bounds: &Aabb) -> Result<B, Error> {
         if !bounds.is_finite() || bounds.min.cmpgt(bounds.max).any() {
             return Err(Error::NonFiniteCoordinate {
                 primitive: item as usize,
@@ -447,8 +533,13 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
                 primitive: item as usize,
             });
         }
+        Ok(self.fattened(bounds))
+    }
+
+    /// `bounds` enlarged by the margin (checked by [`fat`](Self::fat)).
+    fn fattened(&self, bounds: &Aabb) -> B {
         let m = Vec3::splat(self.config.margin);
-        Ok(B::from_aabb(&Aabb::new(bounds.min - m, bounds.max + m)))
+        B::from_aabb(&Aabb::new(bounds.min - m, bounds.max + m))
     }
 
     /// Inserts object `item` with bounds `bounds`; returns its leaf's
@@ -681,6 +772,217 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         Ok(())
     }
 
+    /// Rebuilds the whole tree over `items` (each object present, once),
+    /// laid out anew in depth-first order from storage slot 0, each leaf's
+    /// fat volume made afresh from `boxes[item]`; `on_leaf(item, handle,
+    /// fat volume)` receives every object's new leaf, and every old handle is stale
+    /// afterwards. Splits as [`rebuild`](Self::rebuild) does. Why: a tree
+    /// kept up by insertions and updates has its nodes scattered over the
+    /// storage, and a walk over all of it (a self query each step) then
+    /// waits on memory; laid out in walk order, it streams. Errors: an
+    /// item count that is not [`len`](Self::len), or an item whose box is
+    /// bad (nothing changes then).
+    pub(crate) fn rebuild_in_order(
+        &mut self,
+        items: &mut [u32],
+        boxes: &[Aabb],
+        mut on_leaf: impl FnMut(u32, LeafHandle, &B),
+    ) -> Result<(), Error> {
+        if items.len() != self.leaves as usize {
+            return Err(Error::InvalidConfig("every object present, once"));
+        }
+        for &item in items.iter() {
+            let bounds = boxes.get(item as usize).ok_or(Error::IndexOverflow {
+                count: item as usize,
+            })?;
+            self.fat(item, bounds)?;
+        }
+        // Every slot free and in its next generation: no old handle matches.
+        for node in self.nodes.iter_mut() {
+            *node = node.released(NULL);
+        }
+        let used = (2 * items.len()).saturating_sub(1);
+        let mut next = 0;
+        self.root = if items.is_empty() {
+            NULL
+        } else {
+            self.place(items, boxes, NULL, &mut next, &mut on_leaf)
+        };
+        // The slots after the tree, in order, are the free list.
+        let slots = self.nodes.len();
+        for i in used..slots {
+            self.nodes[i].parent = if i + 1 < slots { i as u32 + 1 } else { NULL };
+        }
+        self.free = if used < slots { used as u32 } else { NULL };
+        Ok(())
+    }
+
+    /// The subtree of [`rebuild_in_order`](Self::rebuild_in_order) over
+    /// `items` (at least one), its root at slot `*next`, its nodes after it.
+    fn place(
+        &mut self,
+        items: &mut [u32],
+        boxes: &[Aabb],
+        parent: u32,
+        next: &mut u32,
+        on_leaf: &mut impl FnMut(u32, LeafHandle, &B),
+    ) -> u32 {
+        let at = *next;
+        *next += 1;
+        let generation = self.nodes[at as usize].generation;
+        if let [item] = *items {
+            self.nodes[at as usize] = DynNode {
+                bv: self.fattened(&boxes[item as usize]),
+                parent,
+                left: NULL,
+                right: NULL,
+                item,
+                height: 0,
+                generation,
+            };
+            on_leaf(
+                item,
+                LeafHandle::from_parts(at, generation),
+                &self.nodes[at as usize].bv,
+            );
+            return at;
+        }
+        let centre = |i: u32| boxes[i as usize].center();
+        let mut box_of_centres = Aabb::EMPTY;
+        for &i in items.iter() {
+            box_of_centres.grow(centre(i));
+        }
+        let axis = box_of_centres.extent().max_position();
+        let sah = if items.len() > MEDIAN_BELOW {
+            sah_split(items, boxes, &box_of_centres)
+        } else {
+            None
+        };
+        let mid = match sah {
+            Some(mid) => mid,
+            None => {
+                let mid = items.len() / 2;
+                items.select_nth_unstable_by(mid, |&a, &b| {
+                    centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b))
+                });
+                mid
+            }
+        };
+        let (lo, hi) = items.split_at_mut(mid);
+        let left = self.place(lo, boxes, at, next, on_leaf);
+        let right = self.place(hi, boxes, at, next, on_leaf);
+        let (l, r) = (&self.nodes[left as usize], &self.nodes[right as usize]);
+        self.nodes[at as usize] = DynNode {
+            bv: enclose(&l.bv, &r.bv),
+            parent,
+            left,
+            right,
+            item: 0,
+            height: 1 + l.height.max(r.height),
+            generation,
+        };
+        at
+    }
+
+    /// Calls `f(i, j)` for every pair of objects, `i != j`, whose boxes
+    /// `boxes[i]` and `boxes[j]` overlap (touching counts), each pair once
+    /// in either order: the answer of [`SelfPairs`](crate::query::SelfPairs)
+    /// with the bounds answer. The broad phase's walk over every object, cut
+    /// to what a box tree with one object per leaf needs: each pair of
+    /// nodes popped tests its children against each other straight from
+    /// the nodes, with none of the general walk's dispatch (a third of the
+    /// time on 10,000 drifting boxes). Errors: `boxes` shorter than the
+    /// largest id needs.
+    pub(crate) fn for_each_box_pair(
+        &self,
+        boxes: &[Aabb],
+        mut f: impl FnMut(u32, u32),
+    ) -> Result<(), Error> {
+        crate::tree::hierarchy::check_query(self, boxes.len())?;
+        if self.root == NULL {
+            return Ok(());
+        }
+        let nodes = &*self.nodes;
+        let mut inner = [NULL; MAX_DEPTH + 1];
+        let mut pairs = [(NULL, NULL); crate::query::PAIR_STACK];
+        // One pop pushes at most four pairs and goes a level down on both
+        // sides, or two and one level down on one side: a height `h` tree
+        // against itself keeps at most `3 * h + 1` pairs waiting.
+        let height = nodes[self.root as usize].height as usize;
+        if 3 * height + 4 > pairs.len() {
+            return Err(Error::StackOverflow {
+                depth: 2 * height,
+                capacity: pairs.len(),
+            });
+        }
+        let (mut top_inner, mut top) = (0, 0);
+        let mut visit = self.root;
+        loop {
+            let n = &nodes[visit as usize];
+            if !n.is_leaf() {
+                let (l, r) = (&nodes[n.left as usize], &nodes[n.right as usize]);
+                if l.bv.overlaps(&r.bv) {
+                    pairs[0] = (n.left, n.right);
+                    top = 1;
+                }
+                inner[top_inner] = n.right;
+                top_inner += 1;
+                visit = n.left;
+            } else if top_inner > 0 {
+                top_inner -= 1;
+                visit = inner[top_inner];
+            } else {
+                break;
+            }
+            while top > 0 {
+                top -= 1;
+                let (a, b) = pairs[top];
+                let (na, nb) = (&nodes[a as usize], &nodes[b as usize]);
+                match (na.is_leaf(), nb.is_leaf()) {
+                    (true, true) => {
+                        if boxes[na.item as usize].overlaps(&boxes[nb.item as usize]) {
+                            f(na.item, nb.item);
+                        }
+                    }
+                    (false, false) => {
+                        let (al, ar) = (&nodes[na.left as usize].bv, &nodes[na.right as usize].bv);
+                        let (bl, br) = (&nodes[nb.left as usize].bv, &nodes[nb.right as usize].bv);
+                        // Written unconditionally, kept by the test's outcome.
+                        pairs[top] = (na.left, nb.left);
+                        top += usize::from(al.overlaps(bl));
+                        pairs[top] = (na.left, nb.right);
+                        top += usize::from(al.overlaps(br));
+                        pairs[top] = (na.right, nb.left);
+                        top += usize::from(ar.overlaps(bl));
+                        pairs[top] = (na.right, nb.right);
+                        top += usize::from(ar.overlaps(br));
+                    }
+                    (a_leaf, _) => {
+                        let (leaf, node, kids) = if a_leaf { (a, na, nb) } else { (b, nb, na) };
+                        let bv = &node.bv;
+                        pairs[top] = (leaf, kids.left);
+                        top += usize::from(bv.overlaps(&nodes[kids.left as usize].bv));
+                        pairs[top] = (leaf, kids.right);
+                        top += usize::from(bv.overlaps(&nodes[kids.right as usize].bv));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Sum of the surface areas of the inner nodes: how well the tree
+    /// groups its leaves (the leaves' own areas do not depend on the shape).
+    pub(crate) fn inner_area_sum(&self) -> f64 {
+        let mut sum = 0.0;
+        self.for_each_node(|n| {
+            if !n.is_leaf() {
+                sum += area(&n.bv);
+            }
+        });
+        sum
+    }
+
     /// The subtree over `leaves` (at least one), rooted at the returned
     /// node: each node splits its leaves at the median of their centres
     /// along the longest side of the centres' box, so the recursion is
@@ -725,28 +1027,36 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         parent
     }
 
-    /// Whether `bounds` lies inside the fat volume of `handle`'s leaf (then
-    /// [`update`](Self::update) would change nothing). Errors as
-    /// [`update`](Self::update).
-    pub(crate) fn fits(&self, handle: LeafHandle, bounds: &Aabb) -> Result<bool, Error> {
-        let leaf = self.check_leaf(handle)?;
-        self.fat(self.nodes[leaf as usize].item, bounds)?;
-        Ok(self.nodes[leaf as usize].bv.contains_aabb(bounds))
-    }
-
-    /// Gives the leaf of `handle` the fat volume of `bounds` without fixing
-    /// the nodes above it: for a caller that [`rebuild`](Self::rebuild)s
-    /// before the tree is queried again. Errors as
-    /// [`update`](Self::update); nothing changes then.
-    pub(crate) fn refit_leaf_later(
+    /// Gives the leaf of `handle` the fat volume of `bounds` in place and
+    /// refits the nodes above it (heights and shape unchanged), stopping
+    /// where a node's volume no longer changes. Returns the leaf's new fat
+    /// volume and how much the inner nodes' total area
+    /// ([`inner_area_sum`](Self::inner_area_sum)) grew (negative when it
+    /// shrank). Errors as [`update`](Self::update); nothing changes then.
+    pub(crate) fn refit_leaf(
         &mut self,
         handle: LeafHandle,
         bounds: &Aabb,
-    ) -> Result<(), Error> {
+    ) -> Result<(B, f64), Error> {
         let leaf = self.check_leaf(handle)?;
-        let bv = self.fat(self.nodes[leaf as usize].item, bounds)?;
-        self.nodes[leaf as usize].bv = bv;
-        Ok(())
+        let fat = self.fat(self.nodes[leaf as usize].item, bounds)?;
+        self.nodes[leaf as usize].bv = fat;
+        let mut grown = 0.0;
+        let mut n = self.nodes[leaf as usize].parent;
+        while n != NULL {
+            let node = self.nodes[n as usize];
+            let bv = enclose(
+                &self.nodes[node.left as usize].bv,
+                &self.nodes[node.right as usize].bv,
+            );
+            if bv == node.bv {
+                break;
+            }
+            grown += area(&bv) - area(&node.bv);
+            self.nodes[n as usize].bv = bv;
+            n = node.parent;
+        }
+        Ok((fat, grown))
     }
 
     /// The object id of `handle`'s leaf. Errors as [`remove`](Self::remove).
@@ -1736,5 +2046,191 @@ mod tests {
             }
         );
         assert!(!freed.is_live_leaf(0) && !freed.is_live_leaf(u32::MAX));
+    }
+
+    /// Boxes of varied sizes on a small grid (many touch exactly), from a
+    /// fixed generator.
+    fn grid_boxes(n: usize, seed: u64) -> alloc_free::Boxes {
+        let mut s = seed;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as u32
+        };
+        let mut out = alloc_free::Boxes::new();
+        for _ in 0..n {
+            let lo = Vec3::new(
+                (next() % 12) as f32,
+                (next() % 12) as f32,
+                (next() % 12) as f32,
+            ) * 0.5;
+            let size = Vec3::new(
+                (next() % 4 + 1) as f32,
+                (next() % 4 + 1) as f32,
+                (next() % 4 + 1) as f32,
+            ) * 0.5;
+            out.push(Aabb::new(lo, lo + size)).unwrap();
+        }
+        out
+    }
+
+    /// Fixed-size buffers, so the tests need no allocator.
+    mod alloc_free {
+        pub type Boxes = heapless::Vec<super::Aabb, 200>;
+        pub type Pairs = heapless::Vec<(u32, u32), 20_000>;
+    }
+
+    fn brute_pairs(boxes: &[Aabb]) -> alloc_free::Pairs {
+        let mut want = alloc_free::Pairs::new();
+        for i in 0..boxes.len() {
+            for j in i + 1..boxes.len() {
+                if boxes[i].overlaps(&boxes[j]) {
+                    want.push((i as u32, j as u32)).unwrap();
+                }
+            }
+        }
+        want
+    }
+
+    fn box_pairs(tree: &DynamicTree<'_, Aabb>, boxes: &[Aabb]) -> alloc_free::Pairs {
+        let mut got = alloc_free::Pairs::new();
+        tree.for_each_box_pair(boxes, |i, j| {
+            assert_ne!(i, j);
+            got.push((i.min(j), i.max(j))).unwrap();
+        })
+        .unwrap();
+        got.sort_unstable();
+        got
+    }
+
+    #[test]
+    fn the_box_pair_walk_finds_the_brute_force_pairs_once_each() {
+        for (n, margin) in [(0, 0.0), (1, 0.0), (2, 0.0), (37, 0.0), (150, 0.25)] {
+            let boxes = grid_boxes(n, 0x9e37_79b9 + n as u64);
+            let mut storage = [DynNode::<Aabb>::EMPTY; 2 * 150];
+            let config = DynamicConfig {
+                margin,
+                ..DynamicConfig::default()
+            };
+            let mut tree = DynamicTree::new(&mut storage, config).unwrap();
+            for (i, b) in boxes.iter().enumerate() {
+                tree.insert(i as u32, b).unwrap();
+            }
+            let want = brute_pairs(&boxes);
+            assert!(n < 37 || want.len() > n, "a scene with many touching pairs");
+            assert_eq!(box_pairs(&tree, &boxes), want, "{n} boxes");
+            // Too few boxes for the largest id: an error, not a panic.
+            if n > 0 {
+                assert!(tree.for_each_box_pair(&boxes[..n - 1], |_, _| {}).is_err());
+            }
+        }
+    }
+
+    #[test]
+    fn a_rebuild_in_order_lays_the_tree_out_depth_first_with_new_handles() {
+        let boxes = grid_boxes(150, 7);
+        let mut storage = [DynNode::<Aabb>::EMPTY; 2 * 150 + 5];
+        let config = DynamicConfig {
+            margin: 0.1,
+            ..DynamicConfig::default()
+        };
+        let mut tree = DynamicTree::new(&mut storage, config).unwrap();
+        let mut old = [LeafHandle::from_parts(0, 0); 150];
+        for (i, b) in boxes.iter().enumerate() {
+            old[i] = tree.insert(i as u32, b).unwrap();
+        }
+        // Object 3 leaves: 149 objects, ids with a gap.
+        tree.remove(old[3]).unwrap();
+        let mut items = [0u32; 150];
+        let mut k = 0;
+        for i in (0..150u32).filter(|&i| i != 3) {
+            items[k] = i;
+            k += 1;
+        }
+        // A wrong item count is refused, and the tree is as it was.
+        assert!(tree
+            .rebuild_in_order(&mut items[..k - 1], &boxes, |_, _, _| {})
+            .is_err());
+        assert!(tree.contains(old[0]));
+        let mut new = [None; 150];
+        tree.rebuild_in_order(&mut items[..k], &boxes, |item, leaf, fat| {
+            assert_eq!(
+                *fat,
+                Aabb::new(
+                    boxes[item as usize].min - 0.1,
+                    boxes[item as usize].max + 0.1
+                )
+            );
+            new[item as usize] = Some(leaf);
+        })
+        .unwrap();
+        tree.validate().unwrap();
+        assert_eq!(tree.len(), 149);
+        for i in 0..150 {
+            assert!(!tree.contains(old[i]), "every old handle is stale");
+            assert_eq!(new[i].is_some(), i != 3);
+            if let Some(leaf) = new[i] {
+                assert_eq!(tree.item(leaf).unwrap(), i as u32);
+            }
+        }
+        // Depth first from slot 0: each inner node's left child is the
+        // next slot, and the tree fills slots 0..2n-1.
+        assert_eq!(tree.root, 0);
+        for (at, node) in tree.nodes[..2 * 149 - 1].iter().enumerate() {
+            assert_ne!(node.height, u32::MAX, "slot {at} in use");
+            if !node.is_leaf() {
+                assert_eq!(node.left as usize, at + 1);
+            }
+        }
+        // The pairs are the same, and the free slots take new objects.
+        let mut present = [Aabb::new(Vec3::splat(1e6), Vec3::splat(1e6)); 150];
+        for i in (0..150).filter(|&i| i != 3) {
+            present[i] = boxes[i];
+        }
+        let want = brute_pairs(&present);
+        assert_eq!(box_pairs(&tree, &present), want);
+        let again = tree.insert(3, &boxes[3]).unwrap();
+        assert!(again.index() >= 2 * 149 - 1);
+        tree.validate().unwrap();
+        assert_eq!(box_pairs(&tree, &boxes), brute_pairs(&boxes));
+    }
+
+    #[test]
+    fn a_refit_in_place_keeps_the_shape_and_reports_the_area_change() {
+        let boxes = grid_boxes(60, 11);
+        let mut storage = [DynNode::<Aabb>::EMPTY; 2 * 60];
+        let config = DynamicConfig {
+            margin: 0.05,
+            ..DynamicConfig::default()
+        };
+        let mut tree = DynamicTree::new(&mut storage, config).unwrap();
+        let mut leaves = [LeafHandle::from_parts(0, 0); 60];
+        for (i, b) in boxes.iter().enumerate() {
+            leaves[i] = tree.insert(i as u32, b).unwrap();
+        }
+        let mut moved = boxes.clone();
+        let mut area = tree.inner_area_sum();
+        for i in (0..60).step_by(3) {
+            let d = Vec3::new(3.0, -1.0, 0.5) * (i % 5) as f32;
+            moved[i] = Aabb::new(boxes[i].min + d, boxes[i].max + d);
+            let height = tree.height();
+            let (fat, grown) = tree.refit_leaf(leaves[i], &moved[i]).unwrap();
+            assert_eq!(fat, tree.fat_bounds(leaves[i]).unwrap());
+            assert!(fat.contains(&moved[i]));
+            area += grown;
+            let exact = tree.inner_area_sum();
+            assert!(
+                (area - exact).abs() <= 1e-9 * exact,
+                "{area} against {exact}"
+            );
+            assert_eq!(tree.height(), height, "the shape is unchanged");
+        }
+        tree.validate().unwrap();
+        assert_eq!(box_pairs(&tree, &moved), brute_pairs(&moved));
+        // A bad box changes nothing.
+        let nan = Aabb::new(Vec3::splat(f32::NAN), Vec3::ONE);
+        assert!(tree.refit_leaf(leaves[0], &nan).is_err());
+        tree.validate().unwrap();
     }
 }
