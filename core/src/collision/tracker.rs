@@ -24,7 +24,8 @@
 //! boxes that all move, reinserting the leaves that left their fat boxes
 //! and rebuilding with a median split made each step 2.5-2.7x parry3d's
 //! time; refitting in place, rebuilding rarely and in walk order, and the
-//! cut-down walk brought it to 0.8-1.2x (100,000 boxes: 0.8-0.9x).
+//! cut-down walk brought it to about parity (a median of 1.02x over five
+//! runs; 100,000 boxes: 0.89x).
 //!
 //! A pair is two objects whose current boxes overlap (touching counts),
 //! decided on the boxes given, not on the fat leaves: the same answer as
