@@ -17,15 +17,18 @@
 //! reinserted one by one; when many left theirs (a scene where most things
 //! move), each such leaf takes its new fat box where it is and the nodes
 //! above it are refitted, and only once the tree has grown loose is it
-//! rebuilt, laid out in the order the walk visits it.
+//! rebuilt, laid out in the order the walk visits it (as it is once
+//! insertions and reinsertions since the last rebuild reach half the
+//! objects: each took a free node wherever it lay, and a scattered tree
+//! makes every walk wait on memory).
 //!
 //! Measured against parry3d's `Bvh` (refit and incremental optimisation
-//! each frame) by `scripts/bench-peers --broad-phase`: on 10,000 drifting
-//! boxes that all move, reinserting the leaves that left their fat boxes
-//! and rebuilding with a median split made each step 2.5-2.7x parry3d's
-//! time; refitting in place, rebuilding rarely and in walk order, and the
-//! cut-down walk brought it to about parity (a median of 1.02x over five
-//! runs; 100,000 boxes: 0.89x).
+//! each frame) by `scripts/bench-peers --broad-phase` on drifting boxes:
+//! reinserting the leaves that left their fat boxes and rebuilding with a
+//! median split made a step 2.5-2.7x parry3d's time when every box moved;
+//! refits in place, rebuilds in walk order and the cut-down walk bring it
+//! to about parity (medians of five runs: 1.17x on 10,000 boxes, 0.98x on
+//! 100,000), and to 0.48x and 0.62x with one box in ten moving.
 //!
 //! A pair is two objects whose current boxes overlap (touching counts),
 //! decided on the boxes given, not on the fat leaves: the same answer as
@@ -148,6 +151,8 @@ pub struct PairTracker<'s> {
     /// The inner nodes' total area after the last rebuild; `None` before
     /// the first.
     settled_area: Option<f64>,
+    /// Insertions and reinsertions since the last rebuild.
+    churn: usize,
     /// The inner nodes' total area now, as the refits since the last
     /// rebuild moved it (the few leaves reinserted between bulk steps are
     /// not counted: they move it little, and each rebuild measures it
@@ -162,6 +167,10 @@ const BULK: usize = 32;
 /// A tree whose inner area grew past `LOOSE` times its settled area is
 /// rebuilt.
 const LOOSE: f64 = 1.1;
+
+/// Trees of fewer objects are not rebuilt for their churn (see
+/// `take_in_stale`): they fit in cache however they lie.
+const CHURN_FROM: usize = 64;
 
 /// What one [`PairTracker::step`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -214,6 +223,7 @@ impl<'s> PairTracker<'s> {
             count: 0,
             next: storage.next,
             settled_area: None,
+            churn: 0,
             area: 0.0,
         })
     }
@@ -271,6 +281,7 @@ impl<'s> PairTracker<'s> {
             return Err(Error::InvalidConfig("object id already present"));
         }
         let leaf = self.tree.insert(id, bounds)?;
+        self.churn += 1;
         self.slots[i].leaf = Some(leaf);
         self.slots[i].fat = self.tree.fat_bounds(leaf)?;
         self.slots[i].bounds = *bounds;
@@ -312,11 +323,20 @@ impl<'s> PairTracker<'s> {
     /// sibling search and leaves the tree's shape alone; once that shape
     /// has grown loose (the inner nodes' total area [`LOOSE`] times what it
     /// was when last settled), the tree is rebuilt over every object, laid
-    /// out in walk order ([`DynamicTree`]'s `rebuild_in_order`). Errors: a
+    /// out in walk order ([`DynamicTree`]'s `rebuild_in_order`). The tree
+    /// is rebuilt too once insertions and reinsertions since the last
+    /// rebuild reach half the objects (from [`CHURN_FROM`] objects on):
+    /// each new leaf takes a free node wherever it lies in the storage, so
+    /// a tree grown or kept up that way scatters, and walks over it wait on
+    /// memory (one object in ten moving: 0.95x parry3d's step time on
+    /// 100,000 boxes before, 0.62x after). Errors: a
     /// leaf that could not be reinserted (see [`DynamicTree::update`]);
     /// that object leaves the tree, its pairs end at the next step, and the
     /// other boxes are still taken in.
     fn take_in_stale(&mut self) -> Result<(), Error> {
+        if self.churn * 2 > self.tree.len() && self.tree.len() >= CHURN_FROM {
+            return self.rebuild();
+        }
         if self.stale == 0 {
             return Ok(());
         }
@@ -332,8 +352,8 @@ impl<'s> PairTracker<'s> {
                 slot.stale = false;
             }
             self.stale = 0;
-            // The first bulk step lays the tree out too: grown one insertion
-            // at a time, its nodes lie in arrival order, not walk order.
+            // A bulk step before any rebuild (a tree too small for the churn
+            // rule) rebuilds too: its area has nothing to be compared with.
             if self
                 .settled_area
                 .is_some_and(|settled| self.area <= settled * LOOSE)
@@ -353,6 +373,7 @@ impl<'s> PairTracker<'s> {
             self.stale -= 1;
             let before = self.tree.len();
             let updated = self.tree.update(leaf, &slot.bounds);
+            self.churn += 1;
             if let Ok(fat) = self.tree.fat_bounds(leaf) {
                 self.slots[i].fat = fat;
             }
@@ -395,6 +416,7 @@ impl<'s> PairTracker<'s> {
             })?;
         self.area = self.tree.inner_area_sum();
         self.settled_area = Some(self.area);
+        self.churn = 0;
         Ok(())
     }
 
@@ -555,5 +577,110 @@ fn diff(a: &[(u32, u32)], b: &[(u32, u32)], mut f: impl FnMut((u32, u32))) {
         if j == b.len() || b[j] != p {
             f(p);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tree::{Content, Hierarchy};
+    use glam::Vec3;
+
+    const N: usize = 300;
+    const ROOM: usize = 3000;
+
+    /// Whether every inner node reachable from the root has its left child
+    /// in the next storage slot: the depth-first layout of a rebuild.
+    fn laid_out_in_walk_order(tree: &DynamicTree<'_, Aabb>) -> bool {
+        let mut stack = [NULL; 2 * crate::tree::MAX_DEPTH + 2];
+        let (mut top, mut in_order) = (1, tree.root() == 0);
+        stack[0] = tree.root();
+        while top > 0 {
+            top -= 1;
+            if let Content::Inner(kids) = tree.content(stack[top]) {
+                let kids = kids.of_arity(2);
+                in_order &= kids[0] == stack[top] + 1;
+                stack[top] = kids[0];
+                stack[top + 1] = kids[1];
+                top += 2;
+            }
+        }
+        in_order
+    }
+
+    /// The tracker's pairs are brute force's over `boxes` (every slot holds
+    /// an object).
+    fn pairs_are_brute_force(world: &PairTracker<'_>, boxes: &[Aabb]) -> bool {
+        let mut k = 0;
+        let got = world.pairs();
+        for i in 0..boxes.len() {
+            for j in i + 1..boxes.len() {
+                if boxes[i].overlaps(&boxes[j]) {
+                    if got.get(k) != Some(&(i as u32, j as u32)) {
+                        return false;
+                    }
+                    k += 1;
+                }
+            }
+        }
+        k == got.len()
+    }
+
+    #[test]
+    fn a_tree_grown_or_kept_up_by_insertions_is_rebuilt_in_walk_order() {
+        let (mut nodes, mut slots) = ([DynNode::EMPTY; 2 * N - 1], [Slot::EMPTY; N]);
+        let (mut boxes, mut moved) = ([Aabb::EMPTY; N], [0u32; N]);
+        let (mut pairs, mut next) = ([(0, 0); ROOM], [(0, 0); ROOM]);
+        let storage = TrackerStorage {
+            nodes: &mut nodes,
+            slots: &mut slots,
+            boxes: &mut boxes,
+            moved: &mut moved,
+            pairs: &mut pairs,
+            next: &mut next,
+        };
+        let config = DynamicConfig {
+            margin: 0.05,
+            ..Default::default()
+        };
+        let mut world = PairTracker::new(storage, config).unwrap();
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next_f = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut spot = || Vec3::new(next_f(), next_f(), next_f()) * 12.0;
+        let mut current = [Aabb::EMPTY; N];
+        for (i, b) in current.iter_mut().enumerate() {
+            let o = spot();
+            *b = Aabb::new(o, o + 1.0);
+            world.insert(i as u32, b).unwrap();
+        }
+        // 300 arrivals: the first step lays the tree out.
+        world.step(|_| {}).unwrap();
+        assert!(pairs_are_brute_force(&world, &current));
+        assert!(laid_out_in_walk_order(world.tree()));
+        assert_eq!(world.churn, 0);
+        // One object in forty jumps each step: too few to refit in bulk,
+        // each is reinserted, until the churn rebuilds the tree.
+        let mut rebuilt = 0;
+        for step in 0..60 {
+            for i in (step % 40..N).step_by(40) {
+                let o = spot();
+                current[i] = Aabb::new(o, o + 1.0);
+                world.set_bounds(i as u32, &current[i]).unwrap();
+            }
+            let churn = world.churn;
+            world.step(|_| {}).unwrap();
+            world.tree().validate().unwrap();
+            assert!(pairs_are_brute_force(&world, &current), "step {step}");
+            if world.churn < churn {
+                rebuilt += 1;
+                assert!(laid_out_in_walk_order(world.tree()));
+            }
+        }
+        assert!(rebuilt >= 2, "{rebuilt} rebuilds");
     }
 }
