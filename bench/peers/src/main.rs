@@ -219,6 +219,8 @@ fn tasks_only(o: &Options, runs: Runs, sample: usize, started: Instant) {
         eprintln!("{name}: {} triangles", scene.a.len());
         rows.extend(tasks::run(&scene, runs, points, sample));
     }
+    eprintln!("moving boxes: 10000 boxes, 100 frames");
+    rows.extend(tasks::moving_boxes(runs, 10_000, 100));
     let stamp = report::Stamp::now(BROAD_PHASE_PEERS, &o.quick, o.rays, runs, started.elapsed());
     let md = tasks::markdown(&rows, &stamp, o.rays, points);
     println!("{md}");
