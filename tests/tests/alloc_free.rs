@@ -411,9 +411,68 @@ fn check_layouts(failures: &mut Vec<String>) {
     }
 }
 
+/// The incremental broad phase: arrivals, small moves (reinsertions),
+/// every object jumping (refits in place and a rebuild in walk order), the
+/// whole-tree walk, departures, all on caller storage.
+fn check_tracker(failures: &mut Vec<String>) {
+    use bvhkit::collision::{PairTracker, Slot, TrackerStorage};
+    const N: usize = 200;
+    let mut nodes = vec![DynNode::<Aabb>::EMPTY; 2 * N - 1];
+    let (mut slots, mut boxes, mut moved) =
+        (vec![Slot::EMPTY; N], vec![Aabb::EMPTY; N], vec![0u32; N]);
+    let (mut pairs, mut next) = (vec![(0u32, 0u32); 20 * N], vec![(0u32, 0u32); 20 * N]);
+    let place = |i: usize, t: f32| {
+        let o = Vec3::new(
+            (i % 10) as f32 * 1.5,
+            (i / 10 % 10) as f32 * 1.5,
+            (i / 100) as f32 * 1.5,
+        );
+        Aabb::new(o + t, o + t + 2.0)
+    };
+    let (found, allocs) = count(|| {
+        let storage = TrackerStorage {
+            nodes: &mut nodes,
+            slots: &mut slots,
+            boxes: &mut boxes,
+            moved: &mut moved,
+            pairs: &mut pairs,
+            next: &mut next,
+        };
+        let config = DynamicConfig {
+            margin: 0.1,
+            ..DynamicConfig::default()
+        };
+        let mut world = PairTracker::new(storage, config).unwrap();
+        let mut found = 0;
+        for i in 0..N {
+            world.insert(i as u32, &place(i, 0.0)).unwrap();
+        }
+        found += world.step(|_| {}).unwrap().pairs;
+        for (k, t) in [0.05f32, 0.5, 0.9, 1.4].into_iter().enumerate() {
+            // First one object in 25 moves, then all of them.
+            let every = if k == 0 { 25 } else { 1 };
+            for i in (0..N).step_by(every) {
+                world.set_bounds(i as u32, &place(i, t)).unwrap();
+            }
+            found += world.step(|_| {}).unwrap().pairs;
+        }
+        world.remove(7).unwrap();
+        found += world.step(|_| {}).unwrap().pairs;
+        world.tree().validate().unwrap();
+        found
+    });
+    if allocs != 0 {
+        failures.push(format!("PairTracker: steps allocated {allocs} times"));
+    }
+    if found == 0 {
+        failures.push("PairTracker: no pairs found; the test would prove nothing".into());
+    }
+}
+
 fn main() {
     let mut failures = Vec::new();
     check_layouts(&mut failures);
+    check_tracker(&mut failures);
     check::<Aabb>(&mut failures);
     check::<Sphere>(&mut failures);
     check::<Obb>(&mut failures);
@@ -424,7 +483,7 @@ fn main() {
     if n == 0 {
         failures.push("the counting allocator saw no allocation from vec![]".into());
     }
-    let cases = 5 * CONFIGS.len() + 2;
+    let cases = 5 * CONFIGS.len() + 3;
     for f in &failures {
         eprintln!("FAILED: {f}");
     }
