@@ -413,7 +413,10 @@ impl<'s> PairTracker<'s> {
             .rebuild_in_order(&mut self.moved[..present], self.boxes, |id, leaf, fat| {
                 slots[id as usize].leaf = Some(leaf);
                 slots[id as usize].fat = *fat;
+                // Made afresh around its object's box: no longer stale.
+                slots[id as usize].stale = false;
             })?;
+        self.stale = 0;
         self.area = self.tree.inner_area_sum();
         self.settled_area = Some(self.area);
         self.churn = 0;
@@ -676,6 +679,12 @@ mod tests {
             world.step(|_| {}).unwrap();
             world.tree().validate().unwrap();
             assert!(pairs_are_brute_force(&world, &current), "step {step}");
+            // Every box that left its fat leaf was taken in.
+            assert_eq!(world.stale, 0, "step {step}");
+            assert!(world
+                .slots
+                .iter()
+                .all(|s| !s.stale && s.fat.contains(&s.bounds)));
             if world.churn < churn {
                 rebuilt += 1;
                 assert!(laid_out_in_walk_order(world.tree()));
