@@ -631,6 +631,14 @@ mod tests {
 
     #[test]
     fn a_tree_grown_or_kept_up_by_insertions_is_rebuilt_in_walk_order() {
+        // At the origin, and far from it (f32 spacing 1/16 at 1e6: moves
+        // round, boxes touch exactly).
+        for origin in [Vec3::ZERO, Vec3::new(1e6, -1e6, 1e6)] {
+            churn_rebuilds_from(origin);
+        }
+    }
+
+    fn churn_rebuilds_from(origin: Vec3) {
         let (mut nodes, mut slots) = ([DynNode::EMPTY; 2 * N - 1], [Slot::EMPTY; N]);
         let (mut boxes, mut moved) = ([Aabb::EMPTY; N], [0u32; N]);
         let (mut pairs, mut next) = ([(0, 0); ROOM], [(0, 0); ROOM]);
@@ -654,7 +662,7 @@ mod tests {
             s ^= s << 17;
             (s >> 40) as f32 / (1u64 << 24) as f32
         };
-        let mut spot = || Vec3::new(next_f(), next_f(), next_f()) * 12.0;
+        let mut spot = || origin + Vec3::new(next_f(), next_f(), next_f()) * 12.0;
         let mut current = [Aabb::EMPTY; N];
         for (i, b) in current.iter_mut().enumerate() {
             let o = spot();
