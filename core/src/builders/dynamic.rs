@@ -772,24 +772,28 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         Ok(())
     }
 
-    /// Rebuilds the whole tree over `items` (each object present, once),
-    /// laid out anew in depth-first order from storage slot 0, each leaf's
+    /// Rebuilds the whole tree over `items` (each object once: those in
+    /// the tree and any others, which join it), laid out anew in depth-first order from storage slot 0, each leaf's
     /// fat volume made afresh from `boxes[item]`; `on_leaf(item, handle,
     /// fat volume)` receives every object's new leaf, and every old handle is stale
     /// afterwards. Splits as [`rebuild`](Self::rebuild) does. Why: a tree
     /// kept up by insertions and updates has its nodes scattered over the
     /// storage, and a walk over all of it (a self query each step) then
-    /// waits on memory; laid out in walk order, it streams. Errors: an
-    /// item count that is not [`len`](Self::len), or an item whose box is
-    /// bad (nothing changes then).
+    /// waits on memory; laid out in walk order, it streams. Errors: more
+    /// items than the storage holds, or an item whose box is bad (nothing
+    /// changes then).
     pub(crate) fn rebuild_in_order(
         &mut self,
         items: &mut [u32],
         boxes: &[Aabb],
         mut on_leaf: impl FnMut(u32, LeafHandle, &B),
     ) -> Result<(), Error> {
-        if items.len() != self.leaves as usize {
-            return Err(Error::InvalidConfig("every object present, once"));
+        let used = (2 * items.len()).saturating_sub(1);
+        if used > self.nodes.len() {
+            return Err(Error::NodeCapacity {
+                needed: used,
+                available: self.nodes.len(),
+            });
         }
         for &item in items.iter() {
             let bounds = boxes.get(item as usize).ok_or(Error::IndexOverflow {
@@ -801,7 +805,8 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         for node in self.nodes.iter_mut() {
             *node = node.released(NULL);
         }
-        let used = (2 * items.len()).saturating_sub(1);
+        self.leaves = items.len() as u32;
+        self.max_item = items.iter().copied().max().unwrap_or(0);
         let mut next = 0;
         self.root = if items.is_empty() {
             NULL
@@ -2148,11 +2153,22 @@ mod tests {
             items[k] = i;
             k += 1;
         }
-        // A wrong item count is refused, and the tree is as it was.
+        // A bad box is refused, and the tree is as it was.
+        let mut bad = boxes.clone();
+        bad[5].max.y = f32::NAN;
         assert!(tree
-            .rebuild_in_order(&mut items[..k - 1], &boxes, |_, _, _| {})
+            .rebuild_in_order(&mut items[..k], &bad, |_, _, _| {})
             .is_err());
         assert!(tree.contains(old[0]));
+        assert_eq!(tree.len(), 149);
+        // So are more objects than the storage holds.
+        let mut small = [DynNode::<Aabb>::EMPTY; 5];
+        let mut small = DynamicTree::new(&mut small, config).unwrap();
+        assert!(matches!(
+            small.rebuild_in_order(&mut [0, 1, 2, 4], &boxes, |_, _, _| {}),
+            Err(Error::NodeCapacity { needed: 7, .. })
+        ));
+        assert!(small.is_empty());
         let mut new = [None; 150];
         tree.rebuild_in_order(&mut items[..k], &boxes, |item, leaf, fat| {
             assert_eq!(

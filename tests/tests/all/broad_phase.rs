@@ -20,19 +20,34 @@ enum Op {
     /// Every object present jumps (most of them out of their fat leaves):
     /// the step rebuilds the tree instead of reinserting one by one.
     Scatter(u32),
+    /// Every absent id arrives at once (100 objects: enough for the churn
+    /// rule to rebuild the tree over them at the next step).
+    Crowd(u32),
     Step,
 }
+
+/// Object ids: `0..N`.
+const N: u32 = 100;
 
 fn op() -> impl Strategy<Value = Op> {
     let v = |r: f32| (-r..r, -r..r, -r..r).prop_map(|(x, y, z)| Vec3::new(x, y, z));
     prop_oneof![
-        4 => (0u32..40, v(6.0), 0.2f32..2.0).prop_map(|(i, o, s)| Op::Insert(i, o, s)),
-        1 => (0u32..40).prop_map(Op::Remove),
-        4 => (0u32..40, v(0.05)).prop_map(|(i, d)| Op::Nudge(i, d)),
-        2 => (0u32..40, v(6.0)).prop_map(|(i, o)| Op::Jump(i, o)),
+        4 => (0..N, v(6.0), 0.2f32..2.0).prop_map(|(i, o, s)| Op::Insert(i, o, s)),
+        2 => (0..N).prop_map(Op::Remove),
+        4 => (0..N, v(0.05)).prop_map(|(i, d)| Op::Nudge(i, d)),
+        2 => (0..N, v(6.0)).prop_map(|(i, o)| Op::Jump(i, o)),
         1 => any::<u32>().prop_map(Op::Scatter),
+        1 => any::<u32>().prop_map(Op::Crowd),
         3 => Just(Op::Step),
     ]
+}
+
+/// A spot in `[-6, 6)^3` from a seed and an id.
+fn spot(seed: u32, i: usize) -> Vec3 {
+    let h = (seed as u64 ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15))
+        .wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    let at = |k: u32| ((h >> (k * 16)) & 0xffff) as f32 / 65536.0 * 12.0 - 6.0;
+    Vec3::new(at(0), at(1), at(2))
 }
 
 /// The pairs brute force finds among the objects present (`present[i]`
@@ -54,7 +69,7 @@ fn reference(present: &[Option<Aabb>]) -> Vec<(u32, u32)> {
 /// Runs `ops` with every position offset by `origin` (far from the origin,
 /// `f32` spacing reaches 1/16 at 1e6: nudges round, boxes touch exactly).
 fn run(ops: &[Op], margin: f32, pair_room: usize, origin: Vec3) -> Result<(), TestCaseError> {
-    let n = 40;
+    let n = N as usize;
     let mut storage = bvhkit_std::TrackerBuffers::new(n, pair_room);
     let config = DynamicConfig {
         margin,
@@ -92,14 +107,20 @@ fn run(ops: &[Op], margin: f32, pair_room: usize, origin: Vec3) -> Result<(), Te
             Op::Scatter(seed) => {
                 for (i, slot) in present.iter_mut().enumerate() {
                     let Some(b) = *slot else { continue };
-                    // A spot in [-6, 6)^3 from the seed and the id.
-                    let h = (seed as u64 ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15))
-                        .wrapping_mul(0xbf58_476d_1ce4_e5b9);
-                    let spot = |k: u32| ((h >> (k * 16)) & 0xffff) as f32 / 65536.0 * 12.0 - 6.0;
-                    let o = Vec3::new(spot(0), spot(1), spot(2)) + origin;
+                    let o = spot(seed, i) + origin;
                     let moved = Aabb::new(o, o + b.extent());
                     world.set_bounds(i as u32, &moved).unwrap();
                     *slot = Some(moved);
+                }
+            }
+            Op::Crowd(seed) => {
+                for (i, slot) in present.iter_mut().enumerate() {
+                    if slot.is_none() {
+                        let o = spot(seed, i) + origin;
+                        let b = Aabb::new(o, o + 1.0);
+                        world.insert(i as u32, &b).unwrap();
+                        *slot = Some(b);
+                    }
                 }
             }
             Op::Step => {
@@ -176,9 +197,9 @@ proptest! {
             1 => Just(Vec3::splat(1e6)),
         ],
     ) {
-        // Room for every pair of 40 objects, or for only a few (then some
+        // Room for every pair of the objects, or for only a few (then some
         // steps are refused and must change nothing).
-        run(&ops, margin, if tight { 12 } else { 40 * 39 / 2 }, origin)?;
+        run(&ops, margin, if tight { 12 } else { (N * (N - 1) / 2) as usize }, origin)?;
     }
 }
 
