@@ -521,19 +521,30 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
         self.free = i;
     }
 
+    /// `bounds` enlarged by the margin, once [`check`](Self::check)ed.
     pub(crate) fn fat(&self, item: u32, bounds: &Aabb) -> Result<B, Error> {
-        if !bounds.is_finite() || bounds.min.cmpgt(bounds.max).any() {
-            return Err(Error::NonFiniteCoordinate {
-                primitive: item as usize,
-            });
-        }
-        let limit = crate::MAX_COORDINATE - self.config.margin;
-        if bounds.min.abs().max(bounds.max.abs()).max_element() > limit {
-            return Err(Error::CoordinateOutOfRange {
-                primitive: item as usize,
-            });
-        }
+        self.check(item, bounds)?;
         Ok(self.fattened(bounds))
+    }
+
+    /// Whether `bounds` may be object `item`'s box: finite, not inverted,
+    /// and far enough inside [`MAX_COORDINATE`](crate::MAX_COORDINATE) for
+    /// its fat volume to be too. One lane-wise test passes every good box
+    /// (a NaN fails each comparison); the error is worked out only for a
+    /// bad one (a broad phase checks every box of every frame).
+    #[inline]
+    pub(crate) fn check(&self, item: u32, bounds: &Aabb) -> Result<(), Error> {
+        let (lo, hi) = (Vec3A::from(bounds.min), Vec3A::from(bounds.max));
+        let limit = Vec3A::splat(crate::MAX_COORDINATE - self.config.margin);
+        if (lo.abs().cmple(limit) & hi.abs().cmple(limit) & lo.cmple(hi)).all() {
+            return Ok(());
+        }
+        let primitive = item as usize;
+        Err(if !bounds.is_finite() || lo.cmpgt(hi).any() {
+            Error::NonFiniteCoordinate { primitive }
+        } else {
+            Error::CoordinateOutOfRange { primitive }
+        })
     }
 
     /// `bounds` enlarged by the margin (checked by [`fat`](Self::fat)).
@@ -1062,6 +1073,59 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             n = node.parent;
         }
         Ok((fat, grown))
+    }
+
+    /// Gives `handle`'s leaf the fat volume of `bounds`, and leaves the
+    /// nodes above it as they are: after many such leaves, one
+    /// [`refit_inner`](Self::refit_inner) brings every inner node up to
+    /// date for less than a [`refit_leaf`](Self::refit_leaf) each (whose
+    /// walks up the tree share most of their nodes). Errors as
+    /// [`update`](Self::update).
+    pub(crate) fn set_leaf_fat(&mut self, handle: LeafHandle, bounds: &Aabb) -> Result<B, Error> {
+        let leaf = self.check_leaf(handle)?;
+        let fat = self.fat(self.nodes[leaf as usize].item, bounds)?;
+        self.nodes[leaf as usize].bv = fat;
+        Ok(fat)
+    }
+
+    /// Makes every inner node's volume enclose its children's, children
+    /// first (one walk of the tree), and returns the inner nodes' total
+    /// area (see [`inner_area_sum`](Self::inner_area_sum)).
+    pub(crate) fn refit_inner(&mut self) -> f64 {
+        let mut sum = 0.0;
+        if self.root == NULL || self.nodes[self.root as usize].is_leaf() {
+            return sum;
+        }
+        // The path from the root to the node in hand; `from` is the node
+        // the walk came up from (its parent's left child or right child).
+        let mut path = [NULL; MAX_DEPTH + 1];
+        let (mut top, mut n) = (0, self.root);
+        loop {
+            while !self.nodes[n as usize].is_leaf() && top < path.len() {
+                path[top] = n;
+                top += 1;
+                n = self.nodes[n as usize].left;
+            }
+            let mut from = n;
+            loop {
+                if top == 0 {
+                    return sum;
+                }
+                let p = self.nodes[path[top - 1] as usize];
+                if from == p.left {
+                    n = p.right;
+                    break;
+                }
+                let bv = enclose(
+                    &self.nodes[p.left as usize].bv,
+                    &self.nodes[p.right as usize].bv,
+                );
+                sum += area(&bv);
+                from = path[top - 1];
+                self.nodes[from as usize].bv = bv;
+                top -= 1;
+            }
+        }
     }
 
     /// The object id of `handle`'s leaf. Errors as [`remove`](Self::remove).
@@ -2248,5 +2312,47 @@ mod tests {
         let nan = Aabb::new(Vec3::splat(f32::NAN), Vec3::ONE);
         assert!(tree.refit_leaf(leaves[0], &nan).is_err());
         tree.validate().unwrap();
+    }
+
+    #[test]
+    fn leaves_given_new_boxes_then_one_refit_of_every_inner_node() {
+        // Grown by insertion: nodes lie anywhere in the storage.
+        let boxes = grid_boxes(80, 5);
+        let mut storage = [DynNode::<Aabb>::EMPTY; 2 * 80];
+        let mut tree = DynamicTree::new(&mut storage, DynamicConfig::default()).unwrap();
+        let mut leaves = [LeafHandle::from_parts(0, 0); 80];
+        for (i, b) in boxes.iter().enumerate() {
+            leaves[i] = tree.insert(i as u32, b).unwrap();
+        }
+        let mut moved = boxes.clone();
+        for i in (0..80).step_by(2) {
+            let d = Vec3::new(-2.0, 4.0, 1.0) * (i % 7) as f32;
+            moved[i] = Aabb::new(boxes[i].min + d, boxes[i].max + d);
+            let fat = tree.set_leaf_fat(leaves[i], &moved[i]).unwrap();
+            assert_eq!(fat, tree.fat_bounds(leaves[i]).unwrap());
+        }
+        let area = tree.inner_area_sum(); // before: the old inner boxes
+        let sum = tree.refit_inner();
+        assert_ne!(sum, area);
+        assert_eq!(sum, tree.inner_area_sum());
+        // Every inner node is exactly its children's union.
+        let mut inner = 0;
+        for node in tree.nodes.iter().filter(|n| n.height != u32::MAX) {
+            if !node.is_leaf() {
+                let (l, r) = (
+                    &tree.nodes[node.left as usize],
+                    &tree.nodes[node.right as usize],
+                );
+                assert_eq!(node.bv, l.bv.union(&r.bv));
+                inner += 1;
+            }
+        }
+        assert_eq!(inner, 79);
+        tree.validate().unwrap();
+        assert_eq!(box_pairs(&tree, &moved), brute_pairs(&moved));
+        // A bad box is refused and changes nothing.
+        let nan = Aabb::new(Vec3::splat(f32::NAN), Vec3::ONE);
+        assert!(tree.set_leaf_fat(leaves[1], &nan).is_err());
+        assert!(tree.fat_bounds(leaves[1]).unwrap().contains(&moved[1]));
     }
 }

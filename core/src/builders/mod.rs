@@ -45,6 +45,9 @@ use crate::{
 /// when a rounding step left a hair outside).
 pub(crate) fn enclose<B: BoundingVolume>(l: &B, r: &B) -> B {
     let mut pick = l.merge(r);
+    if B::EXACT_MERGE {
+        return pick;
+    }
     for _ in 0..4 {
         if pick.contains(l) && pick.contains(r) {
             break;

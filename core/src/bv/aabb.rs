@@ -161,6 +161,7 @@ impl BoundingVolume for Aabb {
     const NAME: &'static str = "aabb";
     const EMPTY: Self = Aabb::EMPTY;
     const ZERO: Self = Aabb::new(Vec3::ZERO, Vec3::ZERO);
+    const EXACT_MERGE: bool = true;
 
     fn fit<S: PointSet + ?Sized>(points: &S) -> Self {
         let mut b = Aabb::EMPTY;

@@ -176,6 +176,10 @@ pub trait BoundingVolume: Copy + core::fmt::Debug + PartialEq + 'static {
     }
     /// A volume containing both `self` and `other`.
     fn merge(&self, other: &Self) -> Self;
+    /// Whether [`merge`](Self::merge) always contains both volumes exactly
+    /// (no rounding can leave a hair of either outside): builders then skip
+    /// the check that merges again (a box's merge is a min and a max).
+    const EXACT_MERGE: bool = false;
     /// Conservative overlap test: `false` only when the volumes are disjoint.
     fn overlaps(&self, other: &Self) -> bool;
     /// Conservative overlap test against a box.

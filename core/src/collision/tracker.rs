@@ -36,9 +36,10 @@
 //! boxes of the objects present.
 
 use crate::builders::{DynNode, DynamicConfig, DynamicTree, LeafHandle, NULL};
-use crate::bv::{Aabb, BoundingVolume};
+use crate::bv::Aabb;
 use crate::query::Query;
 use crate::Error;
+use glam::Vec3A;
 
 /// What changed about a pair of objects (`a < b`) since the last step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -52,8 +53,6 @@ pub enum PairEvent {
 /// One object's slot of a [`PairTracker`] (caller storage: one per id).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slot {
-    /// Its box as last given.
-    bounds: Aabb,
     /// Whether the slot holds an object.
     present: bool,
     /// Its leaf in the tree; `None` for an empty slot, and for an object
@@ -72,7 +71,6 @@ pub struct Slot {
 impl Slot {
     /// An empty slot, for initialising storage.
     pub const EMPTY: Slot = Slot {
-        bounds: Aabb::EMPTY,
         present: false,
         leaf: None,
         fat: Aabb::EMPTY,
@@ -169,6 +167,10 @@ pub struct PairTracker<'s> {
 /// More stale leaves than one object in `BULK` are refitted in place, not
 /// reinserted one by one.
 const BULK: usize = 32;
+
+/// More stale leaves than one object in `SWEEP` are refitted by one walk
+/// over the whole tree, not each up from its leaf.
+const SWEEP: usize = 8;
 
 /// A tree whose inner area grew past `LOOSE` times its settled area is
 /// rebuilt.
@@ -297,7 +299,6 @@ impl<'s> PairTracker<'s> {
         self.slots[i].present = true;
         self.slots[i].leaf = None;
         self.slots[i].fat = fat;
-        self.slots[i].bounds = *bounds;
         self.boxes[i] = *bounds;
         self.mark(i);
         Ok(())
@@ -310,24 +311,35 @@ impl<'s> PairTracker<'s> {
     /// [`step`](Self::step)). Errors: an id not present, a bad box (nothing
     /// changes then).
     pub fn set_bounds(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
+        // Called for every object every frame: lane-wise tests, and the
+        // slot read once.
         let i = self.slot(id)?;
-        if !self.slots[i].present {
+        let slot = self.slots[i];
+        if !slot.present {
             return Err(Error::InvalidConfig("object id not present"));
         }
-        if self.slots[i].bounds == *bounds {
+        let (lo, hi) = (Vec3A::from(bounds.min), Vec3A::from(bounds.max));
+        let old = &self.boxes[i];
+        if (lo.cmpeq(old.min.into()) & hi.cmpeq(old.max.into())).all() {
             return Ok(());
         }
-        let fat = self.tree.fat(id, bounds)?; // the box's checks
-        if self.slots[i].leaf.is_none() {
+        self.tree.check(id, bounds)?;
+        if slot.leaf.is_none() {
             // Not in the tree yet: it joins with this box.
-            self.slots[i].fat = fat;
-        } else if !self.slots[i].fat.contains_aabb(bounds) && !self.slots[i].stale {
+            self.slots[i].fat = self.tree.fat(id, bounds)?;
+        } else if !slot.stale
+            && !(Vec3A::from(slot.fat.min).cmple(lo) & hi.cmple(slot.fat.max.into())).all()
+        {
+            // It left its fat leaf.
             self.slots[i].stale = true;
             self.stale += 1;
         }
-        self.slots[i].bounds = *bounds;
         self.boxes[i] = *bounds;
-        self.mark(i);
+        if !slot.moved {
+            self.slots[i].moved = true;
+            self.moved[self.movers] = id;
+            self.movers += 1;
+        }
         Ok(())
     }
 
@@ -373,7 +385,7 @@ impl<'s> PairTracker<'s> {
                 continue;
             }
             self.arrivals -= 1;
-            match self.tree.insert(i as u32, &slot.bounds) {
+            match self.tree.insert(i as u32, &self.boxes[i]) {
                 Ok(leaf) => self.slots[i].leaf = Some(leaf),
                 Err(e) => {
                     self.drop_object(i);
@@ -391,15 +403,23 @@ impl<'s> PairTracker<'s> {
             return Ok(());
         }
         if self.stale * BULK > self.tree.len() {
+            let sweep = self.stale * SWEEP > self.tree.len();
             for &m in &self.moved[..self.movers] {
                 let slot = &mut self.slots[m as usize];
                 if let (true, Some(leaf)) = (slot.stale, slot.leaf) {
                     // Checked when it was given: cannot fail.
-                    let (fat, grown) = self.tree.refit_leaf(leaf, &slot.bounds)?;
-                    slot.fat = fat;
-                    self.area += grown;
+                    if sweep {
+                        slot.fat = self.tree.set_leaf_fat(leaf, &self.boxes[m as usize])?;
+                    } else {
+                        let (fat, grown) = self.tree.refit_leaf(leaf, &self.boxes[m as usize])?;
+                        slot.fat = fat;
+                        self.area += grown;
+                    }
                 }
                 slot.stale = false;
+            }
+            if sweep {
+                self.area = self.tree.refit_inner();
             }
             self.stale = 0;
             // A bulk step before any rebuild (a tree too small for the churn
@@ -422,7 +442,7 @@ impl<'s> PairTracker<'s> {
             self.slots[i].stale = false;
             self.stale -= 1;
             let before = self.tree.len();
-            let updated = self.tree.update(leaf, &slot.bounds);
+            let updated = self.tree.update(leaf, &self.boxes[i]);
             self.churn += 1;
             if let Ok(fat) = self.tree.fat_bounds(leaf) {
                 self.slots[i].fat = fat;
@@ -479,7 +499,6 @@ impl<'s> PairTracker<'s> {
         }
         self.slots[i].present = false;
         self.slots[i].leaf = None;
-        self.slots[i].bounds = Aabb::EMPTY;
         self.boxes[i] = Aabb::EMPTY;
         self.mark(i);
     }
@@ -535,7 +554,7 @@ impl<'s> PairTracker<'s> {
                     capacity: cap,
                 });
             }
-            self.next[..found].sort_unstable();
+            sort_pairs(&mut self.next[..found]);
             return Ok(self.finish(queried, found, &mut f));
         }
         // The old pairs with no mover in them stay as they are.
@@ -554,15 +573,16 @@ impl<'s> PairTracker<'s> {
             }
             let slots = &*self.slots;
             let next = &mut *self.next;
-            self.tree.overlapping(self.boxes, &slot.bounds, |x| {
-                if x == m || (moved(slots, x) && x < m) {
-                    return;
-                }
-                if fresh < room {
-                    next[cap - 1 - fresh] = (m.min(x), m.max(x));
-                }
-                fresh += 1;
-            })?;
+            self.tree
+                .overlapping(self.boxes, &self.boxes[m as usize], |x| {
+                    if x == m || (moved(slots, x) && x < m) {
+                        return;
+                    }
+                    if fresh < room {
+                        next[cap - 1 - fresh] = (m.min(x), m.max(x));
+                    }
+                    fresh += 1;
+                })?;
         }
         let found = kept + fresh;
         if found > cap {
@@ -575,7 +595,7 @@ impl<'s> PairTracker<'s> {
         // front of `next`: the write position never passes the next new
         // pair to read, as kept + new fits the buffer.
         let tail = cap - fresh;
-        self.next[tail..cap].sort_unstable();
+        sort_pairs(&mut self.next[tail..cap]);
         let (mut w, mut j) = (0, tail);
         for p in old.iter().filter(|p| stays(p)) {
             while j < cap && self.next[j] < *p {
@@ -627,6 +647,12 @@ impl<'s> PairTracker<'s> {
     }
 }
 
+/// Sorts pairs as the tuples' order does, comparing each as one `u64`
+/// (fewer branches than the tuple's two comparisons).
+fn sort_pairs(pairs: &mut [(u32, u32)]) {
+    pairs.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
+}
+
 /// Calls `f` with every entry of sorted `a` that is not in sorted `b`.
 fn diff(a: &[(u32, u32)], b: &[(u32, u32)], mut f: impl FnMut((u32, u32))) {
     let mut j = 0;
@@ -643,6 +669,7 @@ fn diff(a: &[(u32, u32)], b: &[(u32, u32)], mut f: impl FnMut((u32, u32))) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bv::BoundingVolume;
     use crate::tree::{Content, Hierarchy};
     use glam::Vec3;
 
@@ -793,7 +820,8 @@ mod tests {
             assert!(world
                 .slots
                 .iter()
-                .all(|s| !s.stale && s.fat.contains(&s.bounds)));
+                .zip(world.boxes.iter())
+                .all(|(s, b)| !s.stale && s.fat.contains(b)));
             if world.churn < churn {
                 rebuilt += 1;
                 assert!(laid_out_in_walk_order(world.tree()));

@@ -220,6 +220,28 @@ fn bad_ids_boxes_and_storage_are_errors() {
         world.set_bounds(1, &nan),
         Err(Error::NonFiniteCoordinate { .. })
     ));
+    // Each bad box gets its own error, arriving or moving.
+    let inverted = Aabb::new(Vec3::ONE, Vec3::ZERO);
+    let infinite = Aabb::new(Vec3::ZERO, Vec3::new(1.0, f32::INFINITY, 1.0));
+    let far = Aabb::new(Vec3::ZERO, Vec3::splat(2.0 * bvhkit::MAX_COORDINATE));
+    for bad in [inverted, infinite] {
+        assert!(matches!(
+            world.insert(2, &bad),
+            Err(Error::NonFiniteCoordinate { primitive: 2 })
+        ));
+        assert!(matches!(
+            world.set_bounds(1, &bad),
+            Err(Error::NonFiniteCoordinate { primitive: 1 })
+        ));
+    }
+    assert!(matches!(
+        world.insert(2, &far),
+        Err(Error::CoordinateOutOfRange { primitive: 2 })
+    ));
+    assert!(matches!(
+        world.set_bounds(1, &far),
+        Err(Error::CoordinateOutOfRange { primitive: 1 })
+    ));
     assert!(world.set_bounds(3, &unit).is_err()); // not present
     assert!(world.remove(0).is_err());
     // Nothing was lost: object 1 is still there, with its box.
