@@ -308,6 +308,50 @@ impl Probe {
         };
         (d2 - self.cut).max(0.0)
     }
+
+    /// The squared gap from the point to `b` in `f32` (rounded: see
+    /// [`may_beat`](Self::may_beat)).
+    #[inline]
+    fn gap2(&self, b: &Aabb) -> f32 {
+        let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
+        let g = (lo - self.p32).max(self.p32 - hi).max(Vec3A::ZERO);
+        g.dot(g)
+    }
+
+    /// The `f32` threshold for a best squared distance `best`: a box whose
+    /// [`gap2`](Self::gap2) is past it (in the range where
+    /// [`bound`](Self::bound) trusts `f32`) has `bound > best`. `bound` is
+    /// `d2 (1 - 2E) - cut` there, so the threshold is `(best + cut) / (1 -
+    /// 2E)`, nudged up and rounded up to `f32`: a gap at or under it is
+    /// only visited, never wrongly pruned.
+    fn limit(&self, best: f64) -> f32 {
+        let t = (best + self.cut) / (1.0 - 2.0 * Self::E) * (1.0 + 1e-9);
+        if !(t < f64::from(f32::MAX)) {
+            return f32::INFINITY;
+        }
+        let t32 = t as f32;
+        if f64::from(t32) < t {
+            f32::from_bits(t32.to_bits() + 1) // t > 0: the next f32 up
+        } else {
+            t32
+        }
+    }
+
+    /// Whether the box with squared gap `d2` (from [`gap2`](Self::gap2);
+    /// `b` makes the box again) may hold something no farther than `best`,
+    /// the squared distance whose [`limit`](Self::limit) is `limit`: `d2`
+    /// at or under the limit, or [`bound`](Self::bound) at most `best`
+    /// where `d2` is out of the range `bound` trusts.
+    #[inline]
+    fn may_beat(&self, d2: f32, limit: f32, best: f64, b: impl FnOnce() -> Aabb) -> bool {
+        if d2 <= limit {
+            return true;
+        }
+        if (1e-30..=f32::MAX).contains(&d2) {
+            return false;
+        }
+        self.bound(&b()) <= best
+    }
 }
 
 impl<B: BoundingVolume> Bvh<'_, B> {
@@ -399,23 +443,37 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
     let root = h.root();
     let probe = Probe::new(point.as_dvec3(), &h.bv(root).aabb());
     let mut best: Option<Nearest> = None;
-    let first = (probe.bound(&h.bv(root).aabb()), root);
-    let mut stack = Stack::<(f64, u32), DFS_STACK>::with(first, h.depth());
-    let mut none = ();
+    // Nodes are ordered and pruned on their `f32` squared gaps against a
+    // limit made from the best distance (see `Probe::limit`); `f64` only
+    // for the rare gap out of `f32`'s comfortable range and at the leaves.
+    let mut limit = f32::INFINITY;
+    let first = (probe.gap2(&h.bv(root).aabb()), root);
+    let mut stack = Stack::<(f32, u32), DFS_STACK>::with(first, h.depth());
+    let may_beat = |best: &Option<Nearest>, limit: f32, d2: f32, n: u32| match best {
+        None => true,
+        Some(b) => probe.may_beat(d2, limit, b.distance_squared, || h.bv(n).aabb()),
+    };
     // The node to open next: the nearer child goes straight here, not
     // through the stack (one push and pop fewer a level).
     let mut next = None;
-    while let Some((bound, n)) = next.take().or_else(|| stack.pop()) {
-        if best.is_some_and(|b| bound > b.distance_squared) {
+    while let Some((d2, n)) = next.take().or_else(|| stack.pop()) {
+        if !may_beat(&best, limit, d2, n) {
             continue;
         }
         match h.content(n) {
-            Content::Leaf(here) => nearest_in_leaf(h, n, here, prims, &probe, &mut best, &mut none),
+            Content::Leaf(here) => {
+                let before = best.map(|b| b.distance_squared);
+                nearest_in_leaf(h, n, here, prims, &probe, &mut best, &mut ());
+                let after = best.map(|b| b.distance_squared);
+                if after != before {
+                    limit = after.map_or(f32::INFINITY, |b| probe.limit(b));
+                }
+            }
             Content::Inner(kids) => {
                 let kids = kids.as_slice();
-                let mut order = [(0.0f64, 0u32); crate::tree::hierarchy::MAX_CHILDREN];
+                let mut order = [(0.0f32, 0u32); crate::tree::hierarchy::MAX_CHILDREN];
                 for (slot, &c) in order.iter_mut().zip(kids) {
-                    *slot = (probe.bound(&h.bv(c).aabb()), c);
+                    *slot = (probe.gap2(&h.bv(c).aabb()), c);
                 }
                 let order = &mut order[..kids.len()];
                 // Farthest first, so the nearest is opened next (two
@@ -428,11 +486,10 @@ pub(crate) fn nearest_nearer_first<H: Hierarchy + ?Sized, P: PointDistance>(
                     order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
                 }
                 if let Some((&nearest, farther)) = order.split_last() {
-                    for &(bc, c) in farther {
-                        if best.is_some_and(|b| bc > b.distance_squared) {
-                            continue;
+                    for &(dc, c) in farther {
+                        if may_beat(&best, limit, dc, c) {
+                            stack.push((dc, c))?;
                         }
-                        stack.push((bc, c))?;
                     }
                     next = Some(nearest);
                 }
@@ -514,6 +571,46 @@ fn nearest_depth_first<H: Hierarchy + ?Sized, P: PointDistance>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The `f32` pruning of the nearer-first search never drops a box that
+    /// the `f64` bound keeps (`bound(b) <= best`), at every magnitude,
+    /// with the best just under, at and over the box's bound, and with
+    /// squared gaps that leave `f32`'s range (under 1e-30, over its
+    /// largest value); and it does prune a box well past the best.
+    #[test]
+    fn the_f32_limit_prunes_only_what_the_f64_bound_prunes() {
+        let mut pruned = 0;
+        for k in -24..=30 {
+            let scale = 10f32.powi(k);
+            for (x, y) in [(1.0, 0.0), (1.0, 1.0), (0.3, 2.0), (0.0, 0.0)] {
+                let p = Vec3::new(-1.0, 0.5, 0.25) * scale;
+                let b = Aabb::new(
+                    Vec3::new(x, y, 0.0) * scale,
+                    Vec3::new(x + 1.0, y + 1.0, 1.0) * scale,
+                );
+                let within = b.union(&Aabb::new(p, p));
+                let probe = Probe::new(p.as_dvec3(), &within);
+                let bound = probe.bound(&b);
+                let d2 = probe.gap2(&b);
+                for best in [
+                    bound * 0.5,
+                    bound * (1.0 - 1e-12),
+                    bound,
+                    bound * (1.0 + 1e-12),
+                    bound * 2.0,
+                    0.0,
+                ] {
+                    let keep = probe.may_beat(d2, probe.limit(best), best, || b);
+                    assert!(
+                        keep || bound > best,
+                        "10^{k} ({x}, {y}): dropped at best {best}, bound {bound}"
+                    );
+                    pruned += usize::from(!keep);
+                }
+            }
+        }
+        assert!(pruned > 100, "{pruned} pruned");
+    }
 
     /// The depth-first, nearer-child-first search (what `Mesh` runs) finds
     /// what brute force finds, for points inside, near and far from a
