@@ -326,7 +326,7 @@ impl Probe {
     /// only visited, never wrongly pruned.
     fn limit(&self, best: f64) -> f32 {
         let t = (best + self.cut) / (1.0 - 2.0 * Self::E) * (1.0 + 1e-9);
-        if !(t < f64::from(f32::MAX)) {
+        if t.is_nan() || t >= f64::from(f32::MAX) {
             return f32::INFINITY;
         }
         let t32 = t as f32;
