@@ -40,6 +40,7 @@ chapters! {
     traversal => "traversal.md",
     descent_rules => "descent-rules.md",
     collision_system => "collision-system.md",
+    engines => "engines.md",
     representations => "representations.md",
     robustness => "robustness.md",
     performance => "performance.md",

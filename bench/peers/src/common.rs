@@ -230,6 +230,57 @@ pub fn time_setup<S, R>(
     (timing, last.expect("at least one run"))
 }
 
+/// Times two ways of doing one job, `a` and `b`, alternating: each once
+/// uncounted, then rounds of one counted run each, `a` first in even
+/// rounds and `b` first in odd ones, for at least `runs` rounds and more
+/// until each side has [`MIN_TIMED_MS`] (at most [`MAX_RUNS`]). A shared
+/// machine's speed drifts over seconds; timing all of `a`'s runs and then
+/// all of `b`'s put each side in a different stretch of that drift (a
+/// 100 ms task's ratio swung from 0.79x to 1.10x between two runs of the
+/// engine tasks), where alternating puts both sides in the same stretch.
+pub fn time_pair<A, B>(
+    runs: usize,
+    mut a: impl FnMut() -> A,
+    mut b: impl FnMut() -> B,
+) -> ((Timing, A), (Timing, B)) {
+    std::hint::black_box(a());
+    std::hint::black_box(b());
+    let (mut ms_a, mut ms_b) = (Vec::new(), Vec::new());
+    let (mut last_a, mut last_b) = (None, None);
+    let (mut total_a, mut total_b) = (0.0, 0.0);
+    let mut round = 0;
+    while ms_a.len() < runs.max(1)
+        || ((total_a < MIN_TIMED_MS || total_b < MIN_TIMED_MS) && ms_a.len() < MAX_RUNS)
+    {
+        for side in [round % 2, 1 - round % 2] {
+            let t = Instant::now();
+            if side == 0 {
+                last_a = Some(std::hint::black_box(a()));
+                let elapsed = t.elapsed().as_secs_f64() * 1e3;
+                ms_a.push(elapsed);
+                total_a += elapsed;
+            } else {
+                last_b = Some(std::hint::black_box(b()));
+                let elapsed = t.elapsed().as_secs_f64() * 1e3;
+                ms_b.push(elapsed);
+                total_b += elapsed;
+            }
+        }
+        round += 1;
+    }
+    let timing = |mut ms: Vec<f64>| {
+        ms.sort_by(f64::total_cmp);
+        Timing {
+            median_ms: ms[ms.len() / 2],
+            min_ms: ms[0],
+        }
+    };
+    (
+        (timing(ms_a), last_a.expect("at least one run")),
+        (timing(ms_b), last_b.expect("at least one run")),
+    )
+}
+
 impl Scene {
     /// The scene for mesh `a`: `b` is `a` turned by 0.02 rad (about y, and
     /// 0.01 about x) and shifted by 1% of the box size, so most triangles
@@ -329,5 +380,35 @@ pub mod reference {
                 );
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::RefCell;
+
+    #[test]
+    fn paired_timing_alternates_which_side_goes_first() {
+        let order = RefCell::new(String::new());
+        let ((ta, a), (tb, b)) = time_pair(
+            3,
+            || {
+                order.borrow_mut().push('a');
+                1
+            },
+            || {
+                order.borrow_mut().push('b');
+                2
+            },
+        );
+        // One uncounted run each, then rounds a-first, b-first, ... until
+        // each side has MIN_TIMED_MS (near-instant closures: MAX_RUNS).
+        let order = order.into_inner();
+        assert!(order.starts_with("ab"), "warm-up runs first");
+        assert!(order[2..].starts_with("abbaab"), "{order}");
+        assert_eq!(order.len(), 2 + 2 * MAX_RUNS);
+        assert_eq!((a, b), (1, 2));
+        assert!(ta.min_ms <= ta.median_ms && tb.min_ms <= tb.median_ms);
     }
 }

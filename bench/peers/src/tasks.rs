@@ -28,7 +28,7 @@
 //!   and the first and last frames' with brute force. `--broad-phase` has
 //!   the per-step figures for more sizes.
 
-use crate::common::{boxes_overlap, random_rays, time, union, Runs, Scene, Timing};
+use crate::common::{boxes_overlap, random_rays, time_pair, union, Runs, Scene, Timing};
 use bvhkit::builders::DynamicConfig;
 use bvhkit::collision::PairTracker;
 use bvhkit::glam::Vec3;
@@ -67,7 +67,9 @@ pub struct TaskRow {
 /// The source this module was built from, for counting each task's lines.
 const SOURCE: &str = include_str!("tasks.rs");
 
-/// Non-blank lines between `// task: NAME` and `// end of task`.
+/// Non-blank lines between `// task: NAME` and `// end of task`. (The
+/// `// ANCHOR:` lines around each task are mdbook's: the book's engine
+/// chapter shows each task's code from them.)
 fn lines_of(name: &str) -> usize {
     let start = format!("// task: {name}");
     SOURCE
@@ -105,75 +107,96 @@ pub fn run(scene: &Scene, runs: Runs, points: usize, sample: usize) -> Vec<TaskR
     let moved: &[Triangle] = &scene.b;
     let moved_vertices: Vec<Vector> = moved.iter().flat_map(|t| t.v.map(vector)).collect();
 
-    let (ours_rays, hits) = time(runs.rays, || {
-        // task: bvhkit rays
-        let mesh = Mesh::new(tris.to_vec()).expect("a valid mesh");
-        let hits: Vec<Option<f32>> = rays
-            .iter()
-            .map(|ray| mesh.cast_ray(ray).map(|hit| hit.t))
-            .collect();
-        // end of task
-        hits
-    });
-    let (parry_rays_ms, parry_hits) = time(runs.rays, || {
-        // task: parry3d rays
-        let mesh = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
-        let hits: Vec<Option<f32>> = parry_rays
-            .iter()
-            .map(|ray| {
-                mesh.cast_local_ray_and_get_normal(ray, f32::MAX, true)
-                    .map(|hit| hit.time_of_impact)
-            })
-            .collect();
-        // end of task
-        hits
-    });
-    let (ours_points, near) = time(runs.rays, || {
-        // task: bvhkit closest-points
-        let mesh = Mesh::new(tris.to_vec()).expect("a valid mesh");
-        let near: Vec<f64> = queries
-            .iter()
-            .map(|&p| mesh.closest_point(p).expect("a point").distance)
-            .collect();
-        // end of task
-        near
-    });
-    let (parry_points_ms, parry_near) = time(runs.rays, || {
-        // task: parry3d closest-points
-        let mesh = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
-        let near: Vec<f32> = parry_points
-            .iter()
-            .map(|&p| (mesh.project_local_point(p, false).point - p).length())
-            .collect();
-        // end of task
-        near
-    });
+    let ((ours_rays, hits), (parry_rays_ms, parry_hits)) = time_pair(
+        runs.rays,
+        || {
+            // ANCHOR: bvhkit-rays
+            // task: bvhkit rays
+            let mesh = Mesh::new(tris.to_vec()).expect("a valid mesh");
+            let hits: Vec<Option<f32>> = rays
+                .iter()
+                .map(|ray| mesh.cast_ray(ray).map(|hit| hit.t))
+                .collect();
+            // end of task
+            // ANCHOR_END: bvhkit-rays
+            hits
+        },
+        || {
+            // ANCHOR: parry3d-rays
+            // task: parry3d rays
+            let mesh = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
+            let hits: Vec<Option<f32>> = parry_rays
+                .iter()
+                .map(|ray| {
+                    mesh.cast_local_ray_and_get_normal(ray, f32::MAX, true)
+                        .map(|hit| hit.time_of_impact)
+                })
+                .collect();
+            // end of task
+            // ANCHOR_END: parry3d-rays
+            hits
+        },
+    );
+    let ((ours_points, near), (parry_points_ms, parry_near)) = time_pair(
+        runs.rays,
+        || {
+            // ANCHOR: bvhkit-closest-points
+            // task: bvhkit closest-points
+            let mesh = Mesh::new(tris.to_vec()).expect("a valid mesh");
+            let near: Vec<f64> = queries
+                .iter()
+                .map(|&p| mesh.closest_point(p).expect("a point").distance)
+                .collect();
+            // end of task
+            // ANCHOR_END: bvhkit-closest-points
+            near
+        },
+        || {
+            // ANCHOR: parry3d-closest-points
+            // task: parry3d closest-points
+            let mesh = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
+            let near: Vec<f32> = parry_points
+                .iter()
+                .map(|&p| (mesh.project_local_point(p, false).point - p).length())
+                .collect();
+            // end of task
+            // ANCHOR_END: parry3d-closest-points
+            near
+        },
+    );
 
-    let (ours_pairs, pairs) = time(runs.pairs, || {
-        // task: bvhkit mesh-pairs
-        let a = Mesh::new(tris.to_vec()).expect("a valid mesh");
-        let b = Mesh::new(moved.to_vec()).expect("a valid mesh");
-        let pairs = a.pairs(&b, &Rigid::IDENTITY);
-        // end of task
-        pairs
-    });
-    let (parry_pairs_ms, parry_pairs) = time(runs.pairs, || {
-        // task: parry3d mesh-pairs
-        let a = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
-        let b = TriMesh::new(moved_vertices.clone(), indices.clone()).expect("a valid mesh");
-        let (pose, bvh_b) = (Pose::IDENTITY, b.bvh());
-        let mut pairs: Vec<(u32, u32)> = a
-            .bvh()
-            .leaf_pairs(bvh_b, |x, y| x.intersects(y))
-            .filter(|&(i, j)| {
-                intersection_test(&pose, &a.triangle(i), &pose, &b.triangle(j))
-                    .is_ok_and(|hit| hit.intersecting)
-            })
-            .collect();
-        pairs.sort_unstable();
-        // end of task
-        pairs
-    });
+    let ((ours_pairs, pairs), (parry_pairs_ms, parry_pairs)) = time_pair(
+        runs.pairs,
+        || {
+            // ANCHOR: bvhkit-mesh-pairs
+            // task: bvhkit mesh-pairs
+            let a = Mesh::new(tris.to_vec()).expect("a valid mesh");
+            let b = Mesh::new(moved.to_vec()).expect("a valid mesh");
+            let pairs = a.pairs(&b, &Rigid::IDENTITY);
+            // end of task
+            // ANCHOR_END: bvhkit-mesh-pairs
+            pairs
+        },
+        || {
+            // ANCHOR: parry3d-mesh-pairs
+            // task: parry3d mesh-pairs
+            let a = TriMesh::new(vertices.clone(), indices.clone()).expect("a valid mesh");
+            let b = TriMesh::new(moved_vertices.clone(), indices.clone()).expect("a valid mesh");
+            let (pose, bvh_b) = (Pose::IDENTITY, b.bvh());
+            let mut pairs: Vec<(u32, u32)> = a
+                .bvh()
+                .leaf_pairs(bvh_b, |x, y| x.intersects(y))
+                .filter(|&(i, j)| {
+                    intersection_test(&pose, &a.triangle(i), &pose, &b.triangle(j))
+                        .is_ok_and(|hit| hit.intersecting)
+                })
+                .collect();
+            pairs.sort_unstable();
+            // end of task
+            // ANCHOR_END: parry3d-mesh-pairs
+            pairs
+        },
+    );
     let exact = crate::truth::exact_pairs(scene);
     let differ = |got: &[(u32, u32)]| {
         let extra = got
@@ -281,49 +304,56 @@ pub fn moving_boxes(runs: Runs, n: usize, frames: usize) -> Vec<TaskRow> {
             Vector::from_array(b.max.to_array()),
         )
     };
-    let (ours, counts) = time(runs.pairs, || {
-        // task: bvhkit moving-boxes
-        let mut buffers = TrackerBuffers::new(n, 16 * n);
-        let config = DynamicConfig {
-            margin: 0.1,
-            ..Default::default()
-        };
-        let mut world = PairTracker::new(buffers.storage(), config).expect("storage");
-        for (i, b) in frames[0].iter().enumerate() {
-            world.insert(i as u32, b).expect("a valid box");
-        }
-        let mut counts = Vec::new();
-        for frame in &frames {
-            for (i, b) in frame.iter().enumerate() {
-                world.set_bounds(i as u32, b).expect("a valid box");
+    let ((ours, counts), (peer, peer_counts)) = time_pair(
+        runs.pairs,
+        || {
+            // ANCHOR: bvhkit-moving-boxes
+            // task: bvhkit moving-boxes
+            let mut buffers = TrackerBuffers::new(n, 16 * n);
+            let config = DynamicConfig {
+                margin: 0.1,
+                ..Default::default()
+            };
+            let mut world = PairTracker::new(buffers.storage(), config).expect("storage");
+            for (i, b) in frames[0].iter().enumerate() {
+                world.insert(i as u32, b).expect("a valid box");
             }
-            counts.push(world.step(|_| {}).expect("room for the pairs").pairs);
-        }
-        // end of task
-        counts
-    });
-    let (peer, peer_counts) = time(runs.pairs, || {
-        // task: parry3d moving-boxes
-        let fat = |b: &Aabb| parry_box(&Aabb::new(b.min - 0.1, b.max + 0.1));
-        let leaves: Vec<ParryAabb> = frames[0].iter().map(fat).collect();
-        let mut bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &leaves);
-        let mut workspace = BvhWorkspace::default();
-        let mut counts = Vec::new();
-        for frame in &frames {
-            for (i, b) in frame.iter().enumerate() {
-                bvh.insert_or_update_partially(parry_box(b), i as u32, 0.1);
+            let mut counts = Vec::new();
+            for frame in &frames {
+                for (i, b) in frame.iter().enumerate() {
+                    world.set_bounds(i as u32, b).expect("a valid box");
+                }
+                counts.push(world.step(|_| {}).expect("room for the pairs").pairs);
             }
-            bvh.refit(&mut workspace);
-            bvh.optimize_incremental(&mut workspace);
-            let mut count = 0;
-            bvh.traverse_bvtt_single_tree::<false>(&mut workspace, &mut |i, j| {
-                count += usize::from(boxes_overlap(&frame[i as usize], &frame[j as usize]));
-            });
-            counts.push(count);
-        }
-        // end of task
-        counts
-    });
+            // end of task
+            // ANCHOR_END: bvhkit-moving-boxes
+            counts
+        },
+        || {
+            // ANCHOR: parry3d-moving-boxes
+            // task: parry3d moving-boxes
+            let fat = |b: &Aabb| parry_box(&Aabb::new(b.min - 0.1, b.max + 0.1));
+            let leaves: Vec<ParryAabb> = frames[0].iter().map(fat).collect();
+            let mut bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &leaves);
+            let mut workspace = BvhWorkspace::default();
+            let mut counts = Vec::new();
+            for frame in &frames {
+                for (i, b) in frame.iter().enumerate() {
+                    bvh.insert_or_update_partially(parry_box(b), i as u32, 0.1);
+                }
+                bvh.refit(&mut workspace);
+                bvh.optimize_incremental(&mut workspace);
+                let mut count = 0;
+                bvh.traverse_bvtt_single_tree::<false>(&mut workspace, &mut |i, j| {
+                    count += usize::from(boxes_overlap(&frame[i as usize], &frame[j as usize]));
+                });
+                counts.push(count);
+            }
+            // end of task
+            // ANCHOR_END: parry3d-moving-boxes
+            counts
+        },
+    );
     // Brute force on the first and the last frame; the crates' counts
     // compared on every frame.
     let brute = |boxes: &[Aabb]| {
@@ -373,8 +403,8 @@ pub fn markdown(
     points: usize,
 ) -> String {
     let mut md = format!(
-        "# bvhkit against parry3d: engine tasks\n\n{} · {} · {} · {} run: median of {} \
-         (build and queries together) · {:.0} s\n\n\
+        "# bvhkit against parry3d: engine tasks\n\n{} · {} · {} · {} run: medians of {} \
+         alternating runs of the two crates (build and queries together) · {:.0} s\n\n\
          Each task as a user writes it with each crate's one-call API, timed from the \
          triangles to the last answer (the tree's build included). Lines: the task's \
          non-blank lines in `bench/peers/src/tasks.rs`. Ratio: bvhkit's time over \

@@ -16,6 +16,7 @@ mod characteristics;
 mod collision;
 mod descent;
 mod embedded;
+mod engines;
 mod exercises;
 mod insertion;
 mod introduction;
@@ -79,6 +80,7 @@ pub fn all(book_src: &Path) -> Result<Vec<Figure>, FigureError> {
     out.extend(traversal::figures(book_src)?);
     out.extend(descent::figures(book_src)?);
     out.extend(collision::figures(book_src)?);
+    out.extend(engines::figures(book_src)?);
     out.extend(representations::figures(book_src)?);
     out.extend(robustness::figures(book_src)?);
     out.extend(performance::figures(book_src)?);
