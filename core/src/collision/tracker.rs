@@ -678,6 +678,40 @@ mod tests {
     const N: usize = 300;
     const ROOM: usize = 3000;
 
+    /// Storage for `N` objects and `ROOM` pairs, on the stack.
+    struct Buffers {
+        nodes: [DynNode<Aabb>; 2 * N - 1],
+        slots: [Slot; N],
+        boxes: [Aabb; N],
+        moved: [u32; N],
+        pairs: [(u32, u32); ROOM],
+        next: [(u32, u32); ROOM],
+    }
+
+    impl Buffers {
+        fn new() -> Self {
+            Buffers {
+                nodes: [DynNode::EMPTY; 2 * N - 1],
+                slots: [Slot::EMPTY; N],
+                boxes: [Aabb::EMPTY; N],
+                moved: [0; N],
+                pairs: [(0, 0); ROOM],
+                next: [(0, 0); ROOM],
+            }
+        }
+
+        fn storage(&mut self) -> TrackerStorage<'_> {
+            TrackerStorage {
+                nodes: &mut self.nodes,
+                slots: &mut self.slots,
+                boxes: &mut self.boxes,
+                moved: &mut self.moved,
+                pairs: &mut self.pairs,
+                next: &mut self.next,
+            }
+        }
+    }
+
     /// Whether every inner node reachable from the root has its left child
     /// in the next storage slot: the depth-first layout of a rebuild.
     fn laid_out_in_walk_order(tree: &DynamicTree<'_, Aabb>) -> bool {
@@ -717,17 +751,8 @@ mod tests {
 
     #[test]
     fn arrivals_join_the_tree_at_the_step() {
-        let (mut nodes, mut slots) = ([DynNode::EMPTY; 2 * N - 1], [Slot::EMPTY; N]);
-        let (mut boxes, mut moved) = ([Aabb::EMPTY; N], [0u32; N]);
-        let (mut pairs, mut next) = ([(0, 0); ROOM], [(0, 0); ROOM]);
-        let storage = TrackerStorage {
-            nodes: &mut nodes,
-            slots: &mut slots,
-            boxes: &mut boxes,
-            moved: &mut moved,
-            pairs: &mut pairs,
-            next: &mut next,
-        };
+        let mut buffers = Buffers::new();
+        let storage = buffers.storage();
         let mut world = PairTracker::new(storage, DynamicConfig::default()).unwrap();
         let mut current = [Aabb::EMPTY; N];
         for (i, b) in current.iter_mut().enumerate() {
@@ -769,17 +794,8 @@ mod tests {
     }
 
     fn churn_rebuilds_from(origin: Vec3) {
-        let (mut nodes, mut slots) = ([DynNode::EMPTY; 2 * N - 1], [Slot::EMPTY; N]);
-        let (mut boxes, mut moved) = ([Aabb::EMPTY; N], [0u32; N]);
-        let (mut pairs, mut next) = ([(0, 0); ROOM], [(0, 0); ROOM]);
-        let storage = TrackerStorage {
-            nodes: &mut nodes,
-            slots: &mut slots,
-            boxes: &mut boxes,
-            moved: &mut moved,
-            pairs: &mut pairs,
-            next: &mut next,
-        };
+        let mut buffers = Buffers::new();
+        let storage = buffers.storage();
         let config = DynamicConfig {
             margin: 0.05,
             ..Default::default()
