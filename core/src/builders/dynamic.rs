@@ -551,7 +551,7 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     }
 
     /// `bounds` enlarged by the margin (checked by [`fat`](Self::fat)).
-    fn fattened(&self, bounds: &Aabb) -> B {
+    pub(crate) fn fattened(&self, bounds: &Aabb) -> B {
         let m = Vec3::splat(self.config.margin);
         B::from_aabb(&Aabb::new(bounds.min - m, bounds.max + m))
     }

@@ -328,7 +328,7 @@ impl<'s> PairTracker<'s> {
         self.tree.check(id, bounds)?;
         if slot.leaf.is_none() {
             // Not in the tree yet: it joins with this box.
-            self.slots[i].fat = self.tree.fat(id, bounds)?;
+            self.slots[i].fat = self.tree.fattened(bounds); // checked above
         } else if !slot.stale
             && !(Vec3A::from(slot.fat.min).cmple(lo) & hi.cmple(slot.fat.max.into())).all()
         {
@@ -516,7 +516,7 @@ impl<'s> PairTracker<'s> {
             None => {
                 // Never joined the tree.
                 self.arrivals -= 1;
-                self.churn -= 1;
+                self.churn = self.churn.saturating_sub(1);
             }
         }
         self.drop_object(i);

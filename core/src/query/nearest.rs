@@ -311,6 +311,7 @@ impl Probe {
 
     /// The squared gap from the point to `b` in `f32` (rounded: see
     /// [`may_beat`](Self::may_beat)).
+    #[cfg(feature = "alloc")] // only the nearer-first search (`Mesh`) prunes in `f32`
     #[inline]
     fn gap2(&self, b: &Aabb) -> f32 {
         let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
@@ -324,6 +325,7 @@ impl Probe {
     /// `d2 (1 - 2E) - cut` there, so the threshold is `(best + cut) / (1 -
     /// 2E)`, nudged up and rounded up to `f32`: a gap at or under it is
     /// only visited, never wrongly pruned.
+    #[cfg(feature = "alloc")] // only the nearer-first search (`Mesh`) prunes in `f32`
     fn limit(&self, best: f64) -> f32 {
         let t = (best + self.cut) / (1.0 - 2.0 * Self::E) * (1.0 + 1e-9);
         if t.is_nan() || t >= f64::from(f32::MAX) {
@@ -342,6 +344,7 @@ impl Probe {
     /// the squared distance whose [`limit`](Self::limit) is `limit`: `d2`
     /// at or under the limit, or [`bound`](Self::bound) at most `best`
     /// where `d2` is out of the range `bound` trusts.
+    #[cfg(feature = "alloc")] // only the nearer-first search (`Mesh`) prunes in `f32`
     #[inline]
     fn may_beat(&self, d2: f32, limit: f32, best: f64, b: impl FnOnce() -> Aabb) -> bool {
         if d2 <= limit {
@@ -577,6 +580,7 @@ mod tests {
     /// with the best just under, at and over the box's bound, and with
     /// squared gaps that leave `f32`'s range (under 1e-30, over its
     /// largest value); and it does prune a box well past the best.
+    #[cfg(feature = "alloc")]
     #[test]
     fn the_f32_limit_prunes_only_what_the_f64_bound_prunes() {
         let mut pruned = 0;
