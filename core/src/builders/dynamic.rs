@@ -537,17 +537,21 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     /// bad one (a broad phase checks every box of every frame).
     #[inline]
     pub(crate) fn check(&self, item: u32, bounds: &Aabb) -> Result<(), Error> {
-        let (lo, hi) = (Vec3A::from(bounds.min), Vec3A::from(bounds.max));
-        let limit = Vec3A::splat(crate::MAX_COORDINATE - self.config.margin);
-        if (lo.abs().cmple(limit) & hi.abs().cmple(limit) & lo.cmple(hi)).all() {
+        let (lo, hi) = bounds.lanes();
+        let limit = glam::Vec4::splat(crate::MAX_COORDINATE - self.config.margin);
+        // Lane w holds a spare value: only x, y and z count.
+        if (lo.abs().cmple(limit) & hi.abs().cmple(limit) & lo.cmple(hi)).bitmask() & 0b111 == 0b111
+        {
             return Ok(());
         }
         let primitive = item as usize;
-        Err(if !bounds.is_finite() || lo.cmpgt(hi).any() {
-            Error::NonFiniteCoordinate { primitive }
-        } else {
-            Error::CoordinateOutOfRange { primitive }
-        })
+        Err(
+            if !bounds.is_finite() || lo.cmpgt(hi).bitmask() & 0b111 != 0 {
+                Error::NonFiniteCoordinate { primitive }
+            } else {
+                Error::CoordinateOutOfRange { primitive }
+            },
+        )
     }
 
     /// `bounds` enlarged by the margin (checked by [`fat`](Self::fat)).

@@ -80,7 +80,7 @@ impl Aabb {
     /// `max`, moved down a lane), where a `Vec3A` of each corner costs three
     /// instructions.
     #[inline(always)]
-    fn lanes(&self) -> (Vec4, Vec4) {
+    pub(crate) fn lanes(&self) -> (Vec4, Vec4) {
         let min = Vec4::new(self.min.x, self.min.y, self.min.z, self.max.x);
         let max = Vec4::new(self.min.z, self.max.x, self.max.y, self.max.z);
         (min, max.yzww())

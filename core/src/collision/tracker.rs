@@ -39,7 +39,6 @@ use crate::builders::{DynNode, DynamicConfig, DynamicTree, LeafHandle, NULL};
 use crate::bv::Aabb;
 use crate::query::Query;
 use crate::Error;
-use glam::Vec3A;
 
 /// What changed about a pair of objects (`a < b`) since the last step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -312,6 +311,7 @@ impl<'s> PairTracker<'s> {
     /// it is taken into the tree at the next step, all at once (see
     /// [`step`](Self::step)). Errors: an id not present, a bad box (nothing
     /// changes then).
+    #[inline]
     pub fn set_bounds(&mut self, id: u32, bounds: &Aabb) -> Result<(), Error> {
         // Called for every object every frame: lane-wise tests, and the
         // slot read once.
@@ -320,9 +320,10 @@ impl<'s> PairTracker<'s> {
         if !slot.present {
             return Err(Error::InvalidConfig("object id not present"));
         }
-        let (lo, hi) = (Vec3A::from(bounds.min), Vec3A::from(bounds.max));
-        let old = &self.boxes[i];
-        if (lo.cmpeq(old.min.into()) & hi.cmpeq(old.max.into())).all() {
+        // Lane w of each corner holds a spare value: only x, y and z count.
+        let (lo, hi) = bounds.lanes();
+        let (old_lo, old_hi) = self.boxes[i].lanes();
+        if (lo.cmpeq(old_lo) & hi.cmpeq(old_hi)).bitmask() & 0b111 == 0b111 {
             return Ok(());
         }
         self.tree.check(id, bounds)?;
@@ -330,7 +331,8 @@ impl<'s> PairTracker<'s> {
             // Not in the tree yet: it joins with this box.
             self.slots[i].fat = self.tree.fattened(bounds); // checked above
         } else if !slot.stale
-            && !(Vec3A::from(slot.fat.min).cmple(lo) & hi.cmple(slot.fat.max.into())).all()
+            && (slot.fat.lanes().0.cmple(lo) & hi.cmple(slot.fat.lanes().1)).bitmask() & 0b111
+                != 0b111
         {
             // It left its fat leaf.
             self.slots[i].stale = true;

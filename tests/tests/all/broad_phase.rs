@@ -203,6 +203,33 @@ proptest! {
     }
 }
 
+/// A box that leaves its fat leaf along one axis alone is still taken
+/// into the tree: each axis is checked (a test that skipped one would leave
+/// the leaf's old fat box in the tree, and the self walk would miss the pair).
+#[test]
+fn a_box_leaving_its_fat_leaf_along_one_axis_is_taken_in() {
+    for axis in 0..3 {
+        let mut s = bvhkit_std::TrackerBuffers::new(2, 4);
+        let mut world = PairTracker::new(s.storage(), DynamicConfig::default()).unwrap();
+        let unit_at = |offset: f32| {
+            let mut o = Vec3::ZERO;
+            o[axis] = offset;
+            Aabb::new(o, o + 1.0)
+        };
+        world.insert(0, &unit_at(0.0)).unwrap();
+        world.insert(1, &unit_at(3.0)).unwrap();
+        world.step(|_| {}).unwrap();
+        assert!(world.pairs().is_empty());
+        // Both move (so the step walks the whole tree): object 0 within its
+        // fat leaf, object 1 out of its own and onto object 0.
+        world.set_bounds(0, &unit_at(0.01)).unwrap();
+        world.set_bounds(1, &unit_at(0.5)).unwrap();
+        let mut events = Vec::new();
+        world.step(|e| events.push(e)).unwrap();
+        assert_eq!(events, [PairEvent::Begin(0, 1)], "axis {axis}");
+    }
+}
+
 #[test]
 fn bad_ids_boxes_and_storage_are_errors() {
     let mut s = bvhkit_std::TrackerBuffers::new(4, 6);
@@ -220,28 +247,42 @@ fn bad_ids_boxes_and_storage_are_errors() {
         world.set_bounds(1, &nan),
         Err(Error::NonFiniteCoordinate { .. })
     ));
-    // Each bad box gets its own error, arriving or moving.
-    let inverted = Aabb::new(Vec3::ONE, Vec3::ZERO);
-    let infinite = Aabb::new(Vec3::ZERO, Vec3::new(1.0, f32::INFINITY, 1.0));
-    let far = Aabb::new(Vec3::ZERO, Vec3::splat(2.0 * bvhkit::MAX_COORDINATE));
-    for bad in [inverted, infinite] {
-        assert!(matches!(
-            world.insert(2, &bad),
-            Err(Error::NonFiniteCoordinate { primitive: 2 })
-        ));
-        assert!(matches!(
-            world.set_bounds(1, &bad),
-            Err(Error::NonFiniteCoordinate { primitive: 1 })
-        ));
+    // Each bad box gets its own error, arriving or moving, whichever one
+    // axis (alone) is bad.
+    for axis in 0..3 {
+        let on_axis = |min: f32, max: f32| {
+            let mut b = unit;
+            (b.min[axis], b.max[axis]) = (min, max);
+            b
+        };
+        let far = 2.0 * bvhkit::MAX_COORDINATE;
+        for bad in [
+            on_axis(1.0, 0.0),
+            on_axis(0.0, f32::INFINITY),
+            on_axis(f32::NEG_INFINITY, 1.0),
+            on_axis(f32::NAN, 1.0),
+            on_axis(0.0, f32::NAN),
+        ] {
+            assert!(matches!(
+                world.insert(2, &bad),
+                Err(Error::NonFiniteCoordinate { primitive: 2 })
+            ));
+            assert!(matches!(
+                world.set_bounds(1, &bad),
+                Err(Error::NonFiniteCoordinate { primitive: 1 })
+            ));
+        }
+        for bad in [on_axis(0.0, far), on_axis(-far, 0.0)] {
+            assert!(matches!(
+                world.insert(2, &bad),
+                Err(Error::CoordinateOutOfRange { primitive: 2 })
+            ));
+            assert!(matches!(
+                world.set_bounds(1, &bad),
+                Err(Error::CoordinateOutOfRange { primitive: 1 })
+            ));
+        }
     }
-    assert!(matches!(
-        world.insert(2, &far),
-        Err(Error::CoordinateOutOfRange { primitive: 2 })
-    ));
-    assert!(matches!(
-        world.set_bounds(1, &far),
-        Err(Error::CoordinateOutOfRange { primitive: 1 })
-    ));
     assert!(world.set_bounds(3, &unit).is_err()); // not present
     assert!(world.remove(0).is_err());
     // Nothing was lost: object 1 is still there, with its box.
