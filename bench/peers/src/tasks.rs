@@ -404,7 +404,8 @@ pub fn markdown(
 ) -> String {
     let mut md = format!(
         "# bvhkit against parry3d: engine tasks\n\n{} · {} · {} · {} run: medians of {} \
-         alternating runs of the two crates (build and queries together) · {:.0} s\n\n\
+         (rays, closest points) and {} (mesh pairs, moving boxes) alternating runs of the \
+         two crates (build and queries together) · {:.0} s\n\n\
          Each task as a user writes it with each crate's one-call API, timed from the \
          triangles to the last answer (the tree's build included). Lines: the task's \
          non-blank lines in `bench/peers/src/tasks.rs`. Ratio: bvhkit's time over \
@@ -412,7 +413,7 @@ pub fn markdown(
          brute force over every triangle (bvhkit's equal, parry3d's within 1e-4).\n\n\
          | mesh | task | bvhkit ms | lines | parry3d ms | lines | ratio | checked |\n\
          |---|---|---:|---:|---:|---:|---:|---|\n",
-        stamp.date, stamp.machine, stamp.peers, stamp.mode, stamp.runs[2], stamp.seconds
+        stamp.date, stamp.machine, stamp.peers, stamp.mode, stamp.runs[2], stamp.runs[1], stamp.seconds
     );
     for pair in rows.chunks(2) {
         let [ours, peer] = pair else { continue };

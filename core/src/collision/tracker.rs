@@ -681,7 +681,7 @@ const RADIX_FROM: usize = 128;
 /// ids' bits, 8 at a time (ids below 10,000: 4 passes, each reading every
 /// pair twice and writing it once); otherwise, or for a few pairs, by
 /// comparison on one `u64` key. The radix sort took the step's sorting
-/// from about 170 instructions a pair to about 50 (10,000 drifting boxes).
+/// from about 170 instructions a pair to about 80 (10,000 drifting boxes).
 fn sort_pairs(pairs: &mut [(u32, u32)], scratch: &mut [(u32, u32)], ids: usize) {
     let n = pairs.len();
     if n < RADIX_FROM || scratch.len() < n {
