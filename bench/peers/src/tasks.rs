@@ -413,7 +413,13 @@ pub fn markdown(
          brute force over every triangle (bvhkit's equal, parry3d's within 1e-4).\n\n\
          | mesh | task | bvhkit ms | lines | parry3d ms | lines | ratio | checked |\n\
          |---|---|---:|---:|---:|---:|---:|---|\n",
-        stamp.date, stamp.machine, stamp.peers, stamp.mode, stamp.runs[2], stamp.runs[1], stamp.seconds
+        stamp.date,
+        stamp.machine,
+        stamp.peers,
+        stamp.mode,
+        stamp.runs[2],
+        stamp.runs[1],
+        stamp.seconds
     );
     for pair in rows.chunks(2) {
         let [ours, peer] = pair else { continue };
