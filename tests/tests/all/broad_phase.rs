@@ -256,31 +256,23 @@ fn bad_ids_boxes_and_storage_are_errors() {
             b
         };
         let far = 2.0 * bvhkit::MAX_COORDINATE;
-        for bad in [
-            on_axis(1.0, 0.0),
-            on_axis(0.0, f32::INFINITY),
-            on_axis(f32::NEG_INFINITY, 1.0),
-            on_axis(f32::NAN, 1.0),
-            on_axis(0.0, f32::NAN),
+        let non_finite = |primitive| Error::NonFiniteCoordinate { primitive };
+        let out_of_range = |primitive| Error::CoordinateOutOfRange { primitive };
+        for (bad, error) in [
+            (on_axis(1.0, 0.0), non_finite as fn(usize) -> Error),
+            (on_axis(0.0, f32::INFINITY), non_finite),
+            (on_axis(f32::NEG_INFINITY, 1.0), non_finite),
+            (on_axis(f32::NAN, 1.0), non_finite),
+            (on_axis(0.0, f32::NAN), non_finite),
+            (on_axis(0.0, far), out_of_range),
+            (on_axis(-far, 0.0), out_of_range),
         ] {
-            assert!(matches!(
-                world.insert(2, &bad),
-                Err(Error::NonFiniteCoordinate { primitive: 2 })
-            ));
-            assert!(matches!(
+            assert_eq!(world.insert(2, &bad), Err(error(2)), "axis {axis}: {bad:?}");
+            assert_eq!(
                 world.set_bounds(1, &bad),
-                Err(Error::NonFiniteCoordinate { primitive: 1 })
-            ));
-        }
-        for bad in [on_axis(0.0, far), on_axis(-far, 0.0)] {
-            assert!(matches!(
-                world.insert(2, &bad),
-                Err(Error::CoordinateOutOfRange { primitive: 2 })
-            ));
-            assert!(matches!(
-                world.set_bounds(1, &bad),
-                Err(Error::CoordinateOutOfRange { primitive: 1 })
-            ));
+                Err(error(1)),
+                "axis {axis}: {bad:?}"
+            );
         }
     }
     assert!(world.set_bounds(3, &unit).is_err()); // not present
