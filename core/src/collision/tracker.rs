@@ -689,8 +689,17 @@ fn sort_pairs(pairs: &mut [(u32, u32)], scratch: &mut [(u32, u32)], ids: usize) 
     let n = pairs.len();
     if n < RADIX_FROM || scratch.len() < n {
         pairs.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
-        return;
+    } else {
+        radix_sort_pairs(pairs, scratch, ids);
     }
+}
+
+/// The radix sort of [`sort_pairs`], in a frame of its own: its 1 KB of
+/// digit counts is on the stack only while it runs, never for the few
+/// pairs of a small scene (a microcontroller's stack budget).
+#[inline(never)]
+fn radix_sort_pairs(pairs: &mut [(u32, u32)], scratch: &mut [(u32, u32)], ids: usize) {
+    let n = pairs.len();
     // The second ids' digits first, then the first ids': each pass keeps
     // the order of the last among equal digits.
     let id_bits = usize::BITS - ids.saturating_sub(1).leading_zeros();
