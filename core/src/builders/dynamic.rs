@@ -947,10 +947,8 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
             let n = &nodes[visit as usize];
             if !n.is_leaf() {
                 let (l, r) = (&nodes[n.left as usize], &nodes[n.right as usize]);
-                if l.bv.overlaps(&r.bv) {
-                    pairs[0] = (n.left, n.right);
-                    top = 1;
-                }
+                pairs[0] = (n.left, n.right);
+                top = usize::from(l.bv.overlaps(&r.bv));
                 inner[top_inner] = n.right;
                 top_inner += 1;
                 visit = n.left;
