@@ -329,13 +329,12 @@ impl<'s> PairTracker<'s> {
             return Ok(());
         }
         self.tree.check(id, bounds)?;
+        let (fat_lo, fat_hi) = slot.fat.lanes();
+        let inside_fat = (fat_lo.cmple(lo) & hi.cmple(fat_hi)).bitmask() & 0b111 == 0b111;
         if slot.leaf.is_none() {
             // Not in the tree yet: it joins with this box.
             self.slots[i].fat = self.tree.fattened(bounds); // checked above
-        } else if !slot.stale
-            && (slot.fat.lanes().0.cmple(lo) & hi.cmple(slot.fat.lanes().1)).bitmask() & 0b111
-                != 0b111
-        {
+        } else if !slot.stale && !inside_fat {
             // It left its fat leaf.
             self.slots[i].stale = true;
             self.stale += 1;
@@ -360,9 +359,10 @@ impl<'s> PairTracker<'s> {
     /// one object in [`BULK`]: a scene where most things move): each such
     /// leaf takes its new fat box where it is, and the nodes above it are
     /// refitted, which costs a fraction of a sibling search and leaves the
-    /// tree's shape alone. Once that shape has grown loose (the inner nodes' total area [`LOOSE`] times what it
-    /// was when last settled), the tree is rebuilt over every object, laid
-    /// out in walk order ([`DynamicTree`]'s `rebuild_in_order`). The tree
+    /// tree's shape alone. Once that shape has grown loose (the inner
+    /// nodes' total area [`LOOSE`] times what it was when last settled),
+    /// the tree is rebuilt over every object, laid out in walk order
+    /// ([`DynamicTree`]'s `rebuild_in_order`). The tree
     /// is rebuilt too once insertions and reinsertions since the last
     /// rebuild reach half the objects (from [`CHURN_FROM`] objects on):
     /// each new leaf takes a free node wherever it lies in the storage, so
