@@ -22,7 +22,7 @@
 
 use super::enclose;
 use super::{BuildReport, Collapse};
-use crate::bv::{Aabb, BoundingVolume};
+use crate::bv::{xyz_all, xyz_any, Aabb, BoundingVolume};
 use crate::primitive::{validate, Primitive};
 use crate::tree::{Bvh, Node, MAX_DEPTH};
 use crate::Error;
@@ -539,19 +539,15 @@ impl<'s, B: BoundingVolume> DynamicTree<'s, B> {
     pub(crate) fn check(&self, item: u32, bounds: &Aabb) -> Result<(), Error> {
         let (lo, hi) = bounds.lanes();
         let limit = glam::Vec4::splat(crate::MAX_COORDINATE - self.config.margin);
-        // Lane w holds a spare value: only x, y and z count.
-        if (lo.abs().cmple(limit) & hi.abs().cmple(limit) & lo.cmple(hi)).bitmask() & 0b111 == 0b111
-        {
+        if xyz_all((lo.abs().cmple(limit) & hi.abs().cmple(limit) & lo.cmple(hi)).bitmask()) {
             return Ok(());
         }
         let primitive = item as usize;
-        Err(
-            if !bounds.is_finite() || lo.cmpgt(hi).bitmask() & 0b111 != 0 {
-                Error::NonFiniteCoordinate { primitive }
-            } else {
-                Error::CoordinateOutOfRange { primitive }
-            },
-        )
+        Err(if !bounds.is_finite() || xyz_any(lo.cmpgt(hi).bitmask()) {
+            Error::NonFiniteCoordinate { primitive }
+        } else {
+            Error::CoordinateOutOfRange { primitive }
+        })
     }
 
     /// `bounds` enlarged by the margin (checked by [`fat`](Self::fat)).

@@ -71,8 +71,7 @@ impl Aabb {
     pub fn overlaps(&self, other: &Aabb) -> bool {
         let (a_min, a_max) = self.lanes();
         let (b_min, b_max) = other.lanes();
-        // Lane w compares spare values: only x, y and z count.
-        (a_min.cmple(b_max) & b_min.cmple(a_max)).bitmask() & 0b111 == 0b111
+        xyz_all((a_min.cmple(b_max) & b_min.cmple(a_max)).bitmask())
     }
 
     /// The corners in 4-lane registers, x, y, z in lanes 0-2: each from one
@@ -233,4 +232,20 @@ impl BoundingVolume for Aabb {
     fn is_empty(&self) -> bool {
         !self.min.cmple(self.max).all()
     }
+}
+
+/// Whether lanes x, y and z of a comparison's `bitmask` are all set. The
+/// corners from [`Aabb::lanes`] carry a spare value in lane w, so a
+/// comparison of them counts lanes 0-2 only.
+#[inline(always)]
+pub(crate) fn xyz_all(bitmask: u32) -> bool {
+    bitmask & 0b111 == 0b111
+}
+
+/// Whether any of lanes x, y and z of a comparison's `bitmask` is set (see
+/// [`xyz_all`]).
+#[cfg(feature = "insertion")]
+#[inline(always)]
+pub(crate) fn xyz_any(bitmask: u32) -> bool {
+    bitmask & 0b111 != 0
 }

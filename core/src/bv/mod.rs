@@ -30,6 +30,8 @@ mod polytope;
 mod sphere;
 
 pub use aabb::Aabb;
+#[cfg(feature = "insertion")]
+pub(crate) use aabb::{xyz_all, xyz_any};
 pub use eigen::symmetric_eigen;
 #[cfg(feature = "kdop")]
 pub use kdop::{Dop14, Dop18, Dop26, ExactKdop, Kdop};

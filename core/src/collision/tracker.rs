@@ -36,7 +36,7 @@
 //! boxes of the objects present.
 
 use crate::builders::{DynNode, DynamicConfig, DynamicTree, LeafHandle, NULL};
-use crate::bv::Aabb;
+use crate::bv::{xyz_all, Aabb};
 use crate::query::Query;
 use crate::Error;
 
@@ -322,15 +322,14 @@ impl<'s> PairTracker<'s> {
         if !slot.present {
             return Err(Error::InvalidConfig("object id not present"));
         }
-        // Lane w of each corner holds a spare value: only x, y and z count.
         let (lo, hi) = bounds.lanes();
         let (old_lo, old_hi) = self.boxes[i].lanes();
-        if (lo.cmpeq(old_lo) & hi.cmpeq(old_hi)).bitmask() & 0b111 == 0b111 {
+        if xyz_all((lo.cmpeq(old_lo) & hi.cmpeq(old_hi)).bitmask()) {
             return Ok(());
         }
         self.tree.check(id, bounds)?;
         let (fat_lo, fat_hi) = slot.fat.lanes();
-        let inside_fat = (fat_lo.cmple(lo) & hi.cmple(fat_hi)).bitmask() & 0b111 == 0b111;
+        let inside_fat = xyz_all((fat_lo.cmple(lo) & hi.cmple(fat_hi)).bitmask());
         if slot.leaf.is_none() {
             // Not in the tree yet: it joins with this box.
             self.slots[i].fat = self.tree.fattened(bounds); // checked above
